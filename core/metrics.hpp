@@ -1,0 +1,28 @@
+#pragma once
+// Accuracy of an estimate against ground truth; NaN marks "undefined" (e.g. precision of an empty set).
+#include <cstdint>
+#include <vector>
+
+#include "core/correspondences.hpp"
+
+namespace verifybench {
+
+/// Geodesic rotation error in degrees: acos((trace(R_gt^T R) - 1) / 2) in 3D, the angle of
+/// R_gt^T R in 2D (trace = 2 cos theta); the cosine is clamped to [-1, 1].
+template <int Dim>
+double rotation_error_deg(const Rigid<Dim>& estimate, const Rigid<Dim>& truth);
+
+/// Euclidean distance between translations.
+template <int Dim>
+double translation_error(const Rigid<Dim>& estimate, const Rigid<Dim>& truth);
+
+struct InlierScores {
+  double precision;  ///< |selected and true| / |selected|; NaN when nothing is selected
+  double recall;     ///< |selected and true| / |true|; NaN when there is no true inlier
+  double f1;         ///< harmonic mean; NaN when either is NaN, 0 when both are 0
+};
+
+/// `labels[i]` is 1 for a true inlier. Throws std::out_of_range for a selected index outside labels.
+InlierScores inlier_scores(const std::vector<int>& selected, const std::vector<std::uint8_t>& labels);
+
+}  // namespace verifybench
