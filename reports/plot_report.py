@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""Robustness curves from a verifybench sweep report.
+
+usage: plot_report.py REPORT.json [--out-dir DIR]
+
+Writes DIR/<stem>_success.png (success rate vs outlier ratio) and DIR/<stem>_time.png (median
+time vs outlier ratio, log scale, with the p90 as a dashed line), one panel per dimension and one
+curve per solver. Runs on Debian's /usr/bin/python3 with python3-matplotlib.
+"""
+import argparse
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def fail(msg):
+    print(f"plot_report: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            doc = json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        fail(f"{path}: {e}")
+    if doc.get("schema_version") != 1:
+        fail(f"{path}: schema_version {doc.get('schema_version')!r} is not 1")
+    aggs = doc.get("aggregates")
+    if not isinstance(aggs, list):
+        fail(f"{path}: no 'aggregates' list")
+    points = [a for a in aggs if a.get("outlier_ratio") is not None]
+    if not points:
+        fail(f"{path}: no sweep points (aggregates with an outlier_ratio)")
+    for a in points:
+        for key in ("solver", "dim", "n", "success_rate", "median_time_ms", "p90_time_ms"):
+            if key not in a:
+                fail(f"{path}: aggregate {a.get('solver')!r} lacks field {key!r}")
+    return doc, points
+
+
+def curves(points):
+    """{dim: {(solver, n): [(ratio, aggregate), ...]}} sorted by ratio."""
+    out = {}
+    for a in points:
+        out.setdefault(a["dim"], {}).setdefault((a["solver"], a["n"]), []).append((a["outlier_ratio"], a))
+    for per_dim in out.values():
+        for series in per_dim.values():
+            series.sort(key=lambda p: p[0])
+    return out
+
+
+def title(doc, dim):
+    sweep = doc.get("parameters", {}).get("sweep", {})
+    eps = doc.get("parameters", {}).get("eps")
+    return f"{dim}D, noise {sweep.get('noise')}, eps {eps}, {sweep.get('trials')} trials/point"
+
+
+def plot(doc, points, out_dir, stem):
+    by_dim = curves(points)
+    dims = sorted(by_dim)
+    paths = []
+    for kind in ("success", "time"):
+        fig, axes = plt.subplots(1, len(dims), figsize=(6 * len(dims), 4.5), squeeze=False)
+        for ax, dim in zip(axes[0], dims):
+            for (solver, n), series in sorted(by_dim[dim].items()):
+                x = [r for r, _ in series]
+                label = f"{solver} (n={n})"
+                if kind == "success":
+                    ax.plot(x, [a["success_rate"] for _, a in series], marker="o", label=label)
+                else:
+                    line, = ax.plot(x, [a["median_time_ms"] for _, a in series], marker="o",
+                                    label=f"{label} median")
+                    ax.plot(x, [a["p90_time_ms"] for _, a in series], linestyle="--",
+                            color=line.get_color(), alpha=0.6, label=f"{label} p90")
+            ax.set_xlabel("outlier ratio")
+            if kind == "success":
+                ax.set_ylabel("success rate")
+                ax.set_ylim(-0.03, 1.03)
+            else:
+                ax.set_ylabel("time per solve [ms]")
+                ax.set_yscale("log")
+            ax.set_title(title(doc, dim))
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=8)
+        fig.tight_layout()
+        path = os.path.join(out_dir, f"{stem}_{kind}.png")
+        tmp = path + ".tmp.png"
+        fig.savefig(tmp, dpi=110)
+        plt.close(fig)
+        os.replace(tmp, path)  # never leave half a PNG under the final name
+        paths.append(path)
+    return paths
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("report")
+    parser.add_argument("--out-dir", default=None, help="default: the report's folder")
+    args = parser.parse_args()
+    doc, points = load(args.report)
+    out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.report))
+    if not os.path.isdir(out_dir):
+        fail(f"{out_dir}: output folder does not exist")
+    stem = os.path.splitext(os.path.basename(args.report))[0]
+    for path in plot(doc, points, out_dir, stem):
+        print(path)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,207 @@
+#include "reports/report.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <thread>
+#include <tuple>
+
+#include "verifybench/version.hpp"
+
+namespace verifybench {
+
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "unknown";
+}
+
+std::string host_name() {
+  char buf[256] = {};
+  return gethostname(buf, sizeof buf - 1) == 0 ? std::string(buf) : "unknown";
+}
+
+/// Sorted copy of the finite values.
+std::vector<double> finite_sorted(const std::vector<double>& values) {
+  std::vector<double> v;
+  for (double x : values) {
+    if (std::isfinite(x)) v.push_back(x);
+  }
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+json median(const std::vector<double>& values) {
+  const auto v = finite_sorted(values);
+  if (v.empty()) return nullptr;
+  const std::size_t mid = v.size() / 2;
+  return v.size() % 2 ? v[mid] : 0.5 * (v[mid - 1] + v[mid]);
+}
+
+json percentile_nearest_rank(const std::vector<double>& values, double p) {
+  const auto v = finite_sorted(values);
+  if (v.empty()) return nullptr;
+  const auto rank = static_cast<std::size_t>(std::ceil(p / 100.0 * double(v.size())));
+  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
+}
+
+}  // namespace
+
+json make_context(const std::vector<std::string>& command_line, std::uint64_t seed) {
+  return {{"tool", "verifybench"},
+          {"tool_version", kVersion},
+          {"git_commit", kGitCommit},
+          {"build_type", kBuildType},
+          {"compiler", __VERSION__},
+          {"date_utc", utc_now()},
+          {"host", host_name()},
+          {"cpu", cpu_model()},
+          {"hardware_threads", std::thread::hardware_concurrency()},
+          {"command_line", command_line},
+          {"seed", seed}};
+}
+
+json to_json(const TrialRecord& r) {
+  json j = {{"solver", r.solver},
+            {"dataset", r.dataset},
+            {"dim", r.dim},
+            {"n", r.n},
+            {"outlier_ratio", r.outlier_ratio ? json(*r.outlier_ratio) : json(nullptr)},
+            {"noise", r.noise ? json(*r.noise) : json(nullptr)},
+            {"trial", r.trial},
+            {"data_seed", r.data_seed},
+            {"solver_seed", r.solver_seed},
+            {"status", r.status},
+            {"accepted", r.accepted},
+            {"inliers", r.inliers},
+            {"true_inliers", r.true_inliers ? json(*r.true_inliers) : json(nullptr)},
+            {"inlier_precision", number_or_null(r.inlier_precision)},
+            {"inlier_recall", number_or_null(r.inlier_recall)},
+            {"inlier_f1", number_or_null(r.inlier_f1)},
+            {"rotation_error_deg", number_or_null(r.rotation_error_deg)},
+            {"translation_error", number_or_null(r.translation_error)},
+            {"success", r.success ? json(*r.success) : json(nullptr)},
+            {"time_ms", r.time_ms},
+            {"graph_ms", r.graph_ms},
+            {"search_ms", r.search_ms},
+            {"fit_ms", r.fit_ms},
+            {"branch_nodes", r.branch_nodes},
+            {"iterations", r.iterations},
+            {"graph_edges", r.graph_edges},
+            {"T_target_source", r.T_target_source}};
+  if (!r.message.empty()) j["message"] = r.message;
+  return j;
+}
+
+json aggregate(const std::vector<TrialRecord>& rows) {
+  using Key = std::tuple<std::string, std::string, int, int, double, double>;
+  auto opt = [](const std::optional<double>& v) { return v ? *v : -1.0; };
+  std::map<Key, std::vector<const TrialRecord*>> groups;
+  std::vector<Key> first_seen;  // keep the rows' order in the output
+  for (const auto& r : rows) {
+    Key key{r.solver, r.dataset, r.dim, r.n, opt(r.outlier_ratio), opt(r.noise)};
+    auto& g = groups[key];
+    if (g.empty()) first_seen.push_back(key);
+    g.push_back(&r);
+  }
+  json out = json::array();
+  for (const Key& key : first_seen) {
+    const auto& g = groups[key];
+    const TrialRecord& head = *g.front();
+    std::vector<double> times, rot, trans, inliers;
+    int accepted = 0, judged = 0, succeeded = 0, errors = 0, limited = 0;
+    for (const TrialRecord* r : g) {
+      times.push_back(r->time_ms);
+      rot.push_back(r->rotation_error_deg);
+      trans.push_back(r->translation_error);
+      inliers.push_back(r->inliers);
+      accepted += r->accepted;
+      errors += r->status == "error";
+      limited += r->status == "time_limit";
+      if (r->success) {
+        ++judged;
+        succeeded += *r->success;
+      }
+    }
+    out.push_back({{"solver", head.solver},
+                   {"dataset", head.dataset},
+                   {"dim", head.dim},
+                   {"n", head.n},
+                   {"outlier_ratio", head.outlier_ratio ? json(*head.outlier_ratio) : json(nullptr)},
+                   {"noise", head.noise ? json(*head.noise) : json(nullptr)},
+                   {"trials", g.size()},
+                   {"errors", errors},
+                   {"time_limited", limited},
+                   {"accept_rate", double(accepted) / double(g.size())},
+                   {"success_rate", judged ? json(double(succeeded) / judged) : json(nullptr)},
+                   {"median_time_ms", median(times)},
+                   {"p90_time_ms", percentile_nearest_rank(times, 90.0)},
+                   {"median_inliers", median(inliers)},
+                   {"median_rotation_error_deg", median(rot)},
+                   {"median_translation_error", median(trans)}});
+  }
+  return out;
+}
+
+json make_report(const json& context, const json& parameters, const std::vector<TrialRecord>& rows) {
+  json results = json::array();
+  for (const auto& r : rows) results.push_back(to_json(r));
+  return {{"schema_version", kReportSchemaVersion},
+          {"context", context},
+          {"parameters", parameters},
+          {"results", std::move(results)},
+          {"aggregates", aggregate(rows)}};
+}
+
+void write_json_atomic(const std::string& path, const json& doc) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    if (!out) {
+      throw std::runtime_error("cannot write report " + path + ": " + std::strerror(errno));
+    }
+    out << doc.dump(2) << '\n';
+    out.flush();
+    if (!out) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw std::runtime_error("cannot write report " + path + ": write failed");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write report " + path + ": " + why);
+  }
+}
+
+}  // namespace verifybench

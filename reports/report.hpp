@@ -1,0 +1,32 @@
+#pragma once
+// Versioned JSON reports. Layout (schema_version 1):
+//   { "schema_version": 1, "context": {...}, "parameters": {...},
+//     "results": [TrialRecord...], "aggregates": [per solver x setting summaries] }
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "reports/record.hpp"
+
+namespace verifybench {
+
+inline constexpr int kReportSchemaVersion = 1;
+
+/// Tool version, git commit, UTC date, host, CPU, build type, command line and seed.
+nlohmann::json make_context(const std::vector<std::string>& command_line, std::uint64_t seed);
+
+nlohmann::json to_json(const TrialRecord& row);
+
+/// Groups rows by (solver, dataset, dim, n, outlier_ratio, noise) and summarises each group:
+/// trials, accept_rate, success_rate (null without ground truth), median and p90 time, median errors.
+/// Medians average the two middle values; p90 is the nearest-rank percentile.
+nlohmann::json aggregate(const std::vector<TrialRecord>& rows);
+
+nlohmann::json make_report(const nlohmann::json& context, const nlohmann::json& parameters,
+                           const std::vector<TrialRecord>& rows);
+
+/// Writes to PATH.tmp.PID beside the target, then renames, so a reader never sees half a report.
+/// Throws std::runtime_error naming the path on failure and leaves no temporary file behind.
+void write_json_atomic(const std::string& path, const nlohmann::json& doc);
+
+}  // namespace verifybench
