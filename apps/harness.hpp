@@ -1,0 +1,48 @@
+#pragma once
+// The harness: runs solvers on correspondence sets and turns each outcome into a report row, with
+// metrics from core. Used by the CLI, the tests and the benchmarks alike.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/correspondences.hpp"
+#include "reports/record.hpp"
+#include "solvers/solver.hpp"
+
+namespace verifybench {
+
+/// Times solver.solve() and scores the result against `set.truth` (which the solver never sees).
+template <int Dim>
+TrialRecord evaluate(const Solver& solver, const std::string& solver_name, const LabeledSet<Dim>& set,
+                     const SolverParams& params, const SuccessCriteria& criteria);
+
+struct SweepConfig {
+  std::vector<std::string> solvers{"clique", "ransac"};
+  std::vector<int> dims{3};
+  int n = 500;
+  std::vector<double> outlier_ratios{0.5, 0.9, 0.99};
+  double noise = 0.01;
+  double extent = 10.0;
+  int trials = 20;
+  std::uint64_t seed = 1;
+  SolverParams params;
+  SuccessCriteria criteria;
+};
+
+/// Called after each (dim, outlier ratio) point with the rows of that point.
+using SweepProgress = std::function<void(const std::vector<TrialRecord>& point_rows)>;
+
+/// Every solver sees the same drawn set in each trial. The set of trial t at (dim, n, ratio) is
+/// drawn from derive_seed(seed, {dim, n, ratio bits, t}), so it does not depend on which other
+/// points or solvers are in the sweep. Stops at the first row whose status is "error" (returning
+/// the rows so far, that one included).
+std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress = {});
+
+/// Runs each solver `trials` times on one set (a real dump); trial t uses solver seed
+/// derive_seed(seed, {t}).
+template <int Dim>
+std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers, const LabeledSet<Dim>& set,
+                                    const std::string& dataset, int trials, std::uint64_t seed,
+                                    const SolverParams& params, const SuccessCriteria& criteria);
+
+}  // namespace verifybench

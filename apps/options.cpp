@@ -1,0 +1,181 @@
+#include "apps/options.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace verifybench {
+
+double parse_real(const std::string& what, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
+    throw UsageError(what + ": '" + text + "' is not a finite number");
+  }
+  return v;
+}
+
+long long parse_integer(const std::string& what, const std::string& text) {
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) {
+    throw UsageError(what + ": '" + text + "' is not an integer");
+  }
+  return v;
+}
+
+Options& Options::add(const std::string& name, const std::string& value_name,
+                      const std::string& fallback, const std::string& help) {
+  order_.push_back(name);
+  specs_[name] = {value_name, fallback, help};
+  return *this;
+}
+
+void Options::parse(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--help" || arg == "-h") {
+      help_ = true;
+      continue;
+    }
+    if (arg.rfind("--", 0) != 0) throw UsageError("unexpected argument '" + arg + "'");
+    std::string name = arg.substr(2), value;
+    const auto eq = name.find('=');
+    const bool inline_value = eq != std::string::npos;
+    if (inline_value) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    }
+    const auto spec = specs_.find(name);
+    if (spec == specs_.end()) throw UsageError("unknown option '--" + name + "' (see --help)");
+    if (values_.count(name)) throw UsageError("option --" + name + " given twice");
+    if (spec->second.value_name.empty()) {
+      if (inline_value) throw UsageError("option --" + name + " takes no value");
+      values_[name] = "1";
+      continue;
+    }
+    if (!inline_value) {
+      if (i + 1 >= args.size()) throw UsageError("option --" + name + " needs a value");
+      value = args[++i];
+    }
+    values_[name] = value;
+  }
+}
+
+std::string Options::help() const {
+  std::ostringstream out;
+  for (const auto& name : order_) {
+    const Spec& s = specs_.at(name);
+    std::string head = "  --" + name + (s.value_name.empty() ? "" : " " + s.value_name);
+    out << head << std::string(head.size() < 30 ? 30 - head.size() : 1, ' ') << s.help;
+    if (!s.fallback.empty()) out << " (default " << s.fallback << ")";
+    out << "\n";
+  }
+  out << "  --help                      this text\n";
+  return out.str();
+}
+
+bool Options::flag(const std::string& name) const { return values_.count(name) > 0; }
+
+std::string Options::text(const std::string& name) const {
+  const auto it = values_.find(name);
+  return it != values_.end() ? it->second : specs_.at(name).fallback;
+}
+
+std::string Options::required(const std::string& name) const {
+  const std::string v = text(name);
+  if (v.empty()) throw UsageError("option --" + name + " is required");
+  return v;
+}
+
+void Options::bad(const std::string& name, const std::string& value, const std::string& why) const {
+  throw UsageError("--" + name + ": '" + value + "' " + why);
+}
+
+double Options::real(const std::string& name, double min, double max) const {
+  const std::string t = text(name);
+  const double v = parse_real("--" + name, t);
+  if (v < min || v > max) {
+    std::ostringstream range;
+    range << "is outside [" << min << ", " << max << "]";
+    bad(name, t, range.str());
+  }
+  return v;
+}
+
+long long Options::integer(const std::string& name, long long min, long long max) const {
+  const std::string t = text(name);
+  const long long v = parse_integer("--" + name, t);
+  if (v < min || v > max) {
+    bad(name, t, "is outside [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  return v;
+}
+
+std::uint64_t Options::seed(const std::string& name) const {
+  const std::string t = text(name);
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(t.c_str(), &end, 10);
+  if (t.empty() || t[0] == '-' || end != t.c_str() + t.size() || errno == ERANGE) {
+    bad(name, t, "is not an unsigned 64-bit integer");
+  }
+  return v;
+}
+
+std::vector<std::string> Options::list(const std::string& name) const {
+  const std::string t = text(name);
+  std::vector<std::string> items;
+  std::stringstream in(t);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty()) bad(name, t, "has an empty item");
+    items.push_back(item);
+  }
+  if (items.empty()) bad(name, t, "is empty");
+  return items;
+}
+
+std::vector<double> parse_range(const std::string& option, const std::string& text, double min,
+                                double max) {
+  std::vector<double> values;
+  auto in_bounds = [&](double v, const std::string& item) {
+    if (v < min || v > max) {
+      std::ostringstream msg;
+      msg << option << ": " << item << " is outside [" << min << ", " << max << "]";
+      throw UsageError(msg.str());
+    }
+    return v;
+  };
+  auto round10 = [](double v) { return std::round(v * 1e10) / 1e10; };
+  if (text.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    std::string part;
+    while (std::getline(in, part, ':')) parts.push_back(part);
+    if (parts.size() != 3) throw UsageError(option + ": '" + text + "' is not start:stop:step");
+    const double start = in_bounds(parse_real(option + " start", parts[0]), parts[0]);
+    const double stop = in_bounds(parse_real(option + " stop", parts[1]), parts[1]);
+    const double step = parse_real(option + " step", parts[2]);
+    if (!(step > 0.0)) throw UsageError(option + ": step '" + parts[2] + "' must be > 0");
+    if (stop < start) throw UsageError(option + ": stop " + parts[1] + " is below start " + parts[0]);
+    for (long k = 0;; ++k) {
+      const double v = round10(start + double(k) * step);
+      if (v >= stop - 1e-9) break;
+      values.push_back(v);
+      if (values.size() > 100000) throw UsageError(option + ": '" + text + "' has too many points");
+    }
+    values.push_back(stop);  // the stop value is always a point of the sweep
+    return values;
+  }
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) values.push_back(in_bounds(parse_real(option, item), item));
+  if (values.empty()) throw UsageError(option + ": no values");
+  return values;
+}
+
+}  // namespace verifybench

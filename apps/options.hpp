@@ -1,0 +1,56 @@
+#pragma once
+// A small command-line option parser: declared options only, "--name value" or "--name=value",
+// strict typed getters whose errors name the option and the value.
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace verifybench {
+
+/// Bad command line or input: the CLI prints the message and exits with code 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Options {
+ public:
+  /// `value_name` empty declares a flag; `fallback` is the default text shown in --help.
+  Options& add(const std::string& name, const std::string& value_name, const std::string& fallback,
+               const std::string& help);
+
+  /// Throws UsageError on an unknown option, a missing value, a repeated option or a stray argument.
+  void parse(const std::vector<std::string>& args);
+  std::string help() const;
+  bool help_requested() const { return help_; }
+
+  bool flag(const std::string& name) const;
+  bool given(const std::string& name) const { return values_.count(name) > 0; }
+  std::string text(const std::string& name) const;  ///< the value or its default; "" when neither
+  std::string required(const std::string& name) const;
+  double real(const std::string& name, double min, double max) const;
+  long long integer(const std::string& name, long long min, long long max) const;
+  std::uint64_t seed(const std::string& name) const;
+  std::vector<std::string> list(const std::string& name) const;  ///< comma-separated, non-empty items
+
+ private:
+  struct Spec {
+    std::string value_name, fallback, help;
+  };
+  [[noreturn]] void bad(const std::string& name, const std::string& value, const std::string& why) const;
+  std::vector<std::string> order_;
+  std::map<std::string, Spec> specs_;
+  std::map<std::string, std::string> values_;
+  bool help_ = false;
+};
+
+/// Parses "start:stop:step" (stop included) or "a,b,c" into values within [min, max].
+std::vector<double> parse_range(const std::string& option, const std::string& text, double min, double max);
+
+/// Strict number parsing; throws UsageError naming `what` and the text.
+double parse_real(const std::string& what, const std::string& text);
+long long parse_integer(const std::string& what, const std::string& text);
+
+}  // namespace verifybench

@@ -1,0 +1,229 @@
+// verifybench: command-line front end. list | sweep | run; see `verifybench --help`.
+#include <cstdio>
+#include <iostream>
+#include <variant>
+
+#include "apps/harness.hpp"
+#include "apps/options.hpp"
+#include "generators/dump_reader.hpp"
+#include "reports/report.hpp"
+#include "solvers/registry.hpp"
+
+namespace vb = verifybench;
+using nlohmann::json;
+
+namespace {
+
+const char* kUsage =
+    "usage: verifybench <command> [options]\n"
+    "commands:\n"
+    "  list    registered solvers\n"
+    "  sweep   robustness sweep on synthetic sets (success rate and time vs outlier ratio)\n"
+    "  run     solvers on a real correspondence dump (DIR/corr.txt [label.txt] [GTmat.txt])\n"
+    "`verifybench <command> --help` lists a command's options.\n";
+
+void add_solver_options(vb::Options& o) {
+  o.add("solvers", "A,B", "clique,ransac", "solvers to run (see `verifybench list`)")
+      .add("eps", "M", "0.1", "pair length tolerance of the correspondence graph, Eq. (1) [m]")
+      .add("inlier-threshold", "M", "", "RANSAC residual threshold [m] (default: eps)")
+      .add("min-inliers", "K", "0", "accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
+      .add("time-limit", "S", "60", "per-solve time limit [s]; best-so-far returned past it")
+      .add("ransac-iterations", "K", "10000", "RANSAC iterations (cap when adaptive)")
+      .add("ransac-adaptive", "", "", "RANSAC: adaptive iteration count")
+      .add("ransac-confidence", "P", "0.999", "RANSAC: confidence of the adaptive count")
+      .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
+      .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
+      .add("success-trans", "M", "0.3", "success: translation error under this [m]")
+      .add("seed", "S", "1", "seed of every random draw (recorded in the report)")
+      .add("out", "FILE.json", "", "report path (required; written atomically)")
+      .add("quiet", "", "", "no progress lines");
+}
+
+vb::SolverParams solver_params(const vb::Options& o) {
+  vb::SolverParams p;
+  p.eps = o.real("eps", 1e-12, 1e12);
+  p.inlier_threshold = o.given("inlier-threshold") ? o.real("inlier-threshold", 1e-12, 1e12) : p.eps;
+  p.min_inliers = static_cast<int>(o.integer("min-inliers", 0, 1 << 30));
+  p.time_limit_s = o.real("time-limit", 1e-6, 1e9);
+  p.ransac_iterations = static_cast<int>(o.integer("ransac-iterations", 1, 2000000000));
+  p.ransac_adaptive = o.flag("ransac-adaptive");
+  p.ransac_confidence = o.real("ransac-confidence", 1e-9, 1 - 1e-12);
+  p.max_graph_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
+  p.seed = o.seed("seed");
+  p.validate();
+  return p;
+}
+
+vb::SuccessCriteria criteria(const vb::Options& o) {
+  vb::SuccessCriteria c;
+  c.max_rotation_error_deg = o.real("success-rot-deg", 0, 180);
+  c.max_translation_error = o.real("success-trans", 0, 1e12);
+  return c;
+}
+
+std::vector<std::string> solver_names(const vb::Options& o) {
+  auto names = o.list("solvers");
+  for (const auto& n : names) {
+    if (!vb::SolverRegistry::contains(n)) vb::SolverRegistry::create(n);  // throws with the list
+  }
+  return names;
+}
+
+json params_json(const vb::SolverParams& p, const vb::SuccessCriteria& c) {
+  return {{"eps", p.eps},
+          {"inlier_threshold", p.inlier_threshold},
+          {"min_inliers", p.min_inliers},
+          {"accept_threshold_2d", p.accept_threshold(2)},
+          {"accept_threshold_3d", p.accept_threshold(3)},
+          {"time_limit_s", p.time_limit_s},
+          {"ransac_iterations", p.ransac_iterations},
+          {"ransac_adaptive", p.ransac_adaptive},
+          {"ransac_confidence", p.ransac_confidence},
+          {"max_graph_bytes", p.max_graph_bytes},
+          {"success_criteria",
+           {{"max_rotation_error_deg", c.max_rotation_error_deg},
+            {"max_translation_error", c.max_translation_error},
+            {"requires_accepted", c.requires_accepted}}}};
+}
+
+void print_point(const std::vector<vb::TrialRecord>& rows) {
+  for (const auto& a : vb::aggregate(rows)) {
+    std::fprintf(stderr, "  %dD n=%d outliers=%s %-8s success=%s accept=%.2f median=%.2f ms\n",
+                 a["dim"].get<int>(), a["n"].get<int>(), a["outlier_ratio"].dump().c_str(),
+                 a["solver"].get<std::string>().c_str(), a["success_rate"].dump().c_str(),
+                 a["accept_rate"].get<double>(),
+                 a["median_time_ms"].is_null() ? 0.0 : a["median_time_ms"].get<double>());
+  }
+}
+
+/// Writes the report; returns 1 when a solver reported an error (its message printed), else 0.
+int finish(const std::string& out, const json& parameters, const std::vector<vb::TrialRecord>& rows,
+           const std::vector<std::string>& argv, std::uint64_t seed) {
+  vb::write_json_atomic(out, vb::make_report(vb::make_context(argv, seed), parameters, rows));
+  std::cout << out << "\n";
+  for (const auto& r : rows) {
+    if (r.status == "error") {
+      std::cerr << "verifybench: error: solver " << r.solver << " failed: " << r.message << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+int cmd_list() {
+  for (const auto& info : vb::SolverRegistry::list()) {
+    std::printf("%-10s %s\n", info.name.c_str(), info.description.c_str());
+  }
+  return 0;
+}
+
+int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  vb::Options o;
+  add_solver_options(o);
+  o.add("dim", "D", "3", "dimension: 2, 3 or 2,3")
+      .add("n", "N", "500", "correspondences per set")
+      .add("outliers", "RANGE", "0.5:0.99:0.05", "outlier ratios: start:stop:step (stop included) or a,b,c")
+      .add("noise", "SIGMA", "0.01", "Gaussian noise per axis on inlier targets [m]")
+      .add("extent", "M", "10", "side of the cube (square) the points are drawn in [m]")
+      .add("trials", "K", "20", "sets per (dim, outlier ratio) point");
+  o.parse(args);
+  if (o.help_requested()) {
+    std::cout << "usage: verifybench sweep [options] --out FILE.json\n" << o.help();
+    return 0;
+  }
+  vb::SweepConfig c;
+  c.solvers = solver_names(o);
+  c.dims.clear();
+  for (const auto& d : o.list("dim")) {
+    if (d != "2" && d != "3") throw vb::UsageError("--dim: '" + d + "' is not 2 or 3");
+    c.dims.push_back(d == "2" ? 2 : 3);
+  }
+  c.n = static_cast<int>(o.integer("n", 1, 100000000));
+  c.outlier_ratios = vb::parse_range("--outliers", o.text("outliers"), 0.0, 1.0);
+  c.noise = o.real("noise", 0.0, 1e9);
+  c.extent = o.real("extent", 1e-9, 1e9);
+  c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  c.params = solver_params(o);
+  c.seed = c.params.seed;
+  c.criteria = criteria(o);
+  const std::string out = o.required("out");
+
+  json parameters = params_json(c.params, c.criteria);
+  parameters["sweep"] = {{"generator", "uniform"}, {"dims", c.dims}, {"n", c.n},
+                         {"outlier_ratios", c.outlier_ratios}, {"noise", c.noise},
+                         {"extent", c.extent}, {"trials", c.trials}, {"solvers", c.solvers}};
+  vb::SweepProgress progress;
+  if (!o.flag("quiet")) progress = print_point;
+  const auto rows = vb::run_sweep(c, progress);
+  return finish(out, parameters, rows, argv, c.seed);
+}
+
+int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  vb::Options o;
+  o.add("dump", "DIR", "", "dump folder: corr.txt, optional label.txt and GTmat.txt (required)");
+  add_solver_options(o);
+  o.add("trials", "K", "1", "repeat each solver K times (timing statistics)");
+  o.parse(args);
+  if (o.help_requested()) {
+    std::cout << "usage: verifybench run --dump DIR [options] --out FILE.json\n" << o.help();
+    return 0;
+  }
+  const std::string dir = o.required("dump");
+  const auto names = solver_names(o);
+  const vb::SolverParams params = solver_params(o);
+  const vb::SuccessCriteria crit = criteria(o);
+  const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  const std::string out = o.required("out");
+  const vb::AnySet set = vb::read_text_dump(dir);
+  std::vector<vb::TrialRecord> rows = std::visit(
+      [&](const auto& s) {
+        vb::validate(s);
+        return vb::run_on_set(names, s, dir, trials, params.seed, params, crit);
+      },
+      set);
+  if (!o.flag("quiet")) print_point(rows);
+  json parameters = params_json(params, crit);
+  parameters["run"] = {{"dump", dir}, {"trials", trials}, {"solvers", names}};
+  return finish(out, parameters, rows, argv, params.seed);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<std::string> all(argv, argv + argc);
+  vb::register_builtin_solvers();
+  if (argc < 2) {
+    std::cerr << "verifybench: error: no command given\n" << kUsage;
+    return 2;
+  }
+  if (all[1] == "--help" || all[1] == "-h" || all[1] == "help") {
+    std::cout << kUsage;
+    return 0;
+  }
+  const std::string cmd = all[1];
+  const std::vector<std::string> rest(all.begin() + 2, all.end());
+  try {
+    if (cmd == "list") {
+      vb::Options o;
+      o.parse(rest);
+      if (o.help_requested()) {
+        std::cout << "usage: verifybench list\n" << o.help();
+        return 0;
+      }
+      return cmd_list();
+    }
+    if (cmd == "sweep") return cmd_sweep(rest, all);
+    if (cmd == "run") return cmd_run(rest, all);
+    throw vb::UsageError("unknown command '" + cmd + "' (commands: list, sweep, run)");
+  } catch (const vb::UsageError& e) {  // bad command line
+    std::cerr << "verifybench: error: " << e.what() << "\n";
+  } catch (const vb::InputError& e) {  // malformed input file
+    std::cerr << "verifybench: error: " << e.what() << "\n";
+  } catch (const std::invalid_argument& e) {  // unknown solver, invalid parameter or set
+    std::cerr << "verifybench: error: " << e.what() << "\n";
+  } catch (const std::exception& e) {  // could not write the report, out of memory, ...
+    std::cerr << "verifybench: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}
