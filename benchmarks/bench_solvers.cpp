@@ -1,0 +1,32 @@
+// Each registered solver on synthetic 3D sets: args are n and the outlier ratio in percent.
+#include <benchmark/benchmark.h>
+
+#include "generators/synthetic.hpp"
+#include "solvers/registry.hpp"
+
+namespace vb = verifybench;
+
+static void BM_Solver(benchmark::State& state, const std::string& name) {
+  vb::register_builtin_solvers();
+  vb::SyntheticParams p;
+  p.n = static_cast<int>(state.range(0));
+  p.outlier_ratio = state.range(1) / 100.0;
+  const auto set = vb::make_synthetic<3>(p);
+  const auto solver = vb::SolverRegistry::create(name);
+  vb::SolverParams params;
+  std::size_t inliers = 0;
+  for (auto _ : state) {
+    const auto r = solver->solve(set.corr, params);
+    inliers = r.inliers.size();
+    benchmark::DoNotOptimize(inliers);
+  }
+  state.counters["inliers"] = static_cast<double>(inliers);
+}
+
+static void Args(benchmark::internal::Benchmark* b) {
+  for (int n : {100, 500, 2000})
+    for (int ratio : {50, 90, 99}) b->Args({n, ratio});
+  b->Unit(benchmark::kMillisecond);
+}
+BENCHMARK_CAPTURE(BM_Solver, clique, std::string("clique"))->Apply(Args);
+BENCHMARK_CAPTURE(BM_Solver, ransac, std::string("ransac"))->Apply(Args);

@@ -1,0 +1,96 @@
+// The CLI: bad input gives one clear line on stderr and exit code 2; good input writes a report.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code;
+  std::string output;
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(VERIFYBENCH_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+void expect_usage_error(const std::string& args, const std::string& needle) {
+  const CliRun r = run(args);
+  EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find("verifybench: error:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << args << "\n" << r.output;
+}
+
+const std::string kOut = "--out " + (fs::temp_directory_path() / "vb_cli.json").string();
+
+TEST(Cli, RejectsBadInputWithExitCode2) {
+  expect_usage_error("frobnicate", "unknown command 'frobnicate'");
+  expect_usage_error("sweep --bogus 1 " + kOut, "unknown option '--bogus'");
+  expect_usage_error("sweep --solvers clique,nope " + kOut, "unknown solver 'nope'");
+  expect_usage_error("sweep --n -5 " + kOut, "--n: '-5' is outside");
+  expect_usage_error("sweep --n abc " + kOut, "--n: 'abc' is not an integer");
+  expect_usage_error("sweep --outliers 0.5:1.5:0.1 " + kOut, "1.5 is outside [0, 1]");
+  expect_usage_error("sweep --outliers 0.9:0.5:0.1 " + kOut, "below start");
+  expect_usage_error("sweep --outliers 0.1:0.5:0 " + kOut, "must be > 0");
+  expect_usage_error("sweep --eps nan " + kOut, "--eps: 'nan' is not a finite number");
+  expect_usage_error("sweep --dim 4 " + kOut, "--dim: '4' is not 2 or 3");
+  expect_usage_error("sweep --trials", "--trials needs a value");
+  expect_usage_error("sweep --n 10", "--out is required");
+  expect_usage_error("run --dump /nonexistent/dir " + kOut, "/nonexistent/dir");
+  expect_usage_error("run " + kOut, "--dump is required");
+  expect_usage_error("", "usage:");
+}
+
+TEST(Cli, MalformedDumpNamesFileAndLine) {
+  const fs::path dir = fs::temp_directory_path() / "vb_cli_dump";
+  fs::create_directories(dir);
+  std::ofstream(dir / "corr.txt") << "0 0 0 1 1 1\n0 0 0 1 1 oops\n";
+  expect_usage_error("run --dump " + dir.string() + " " + kOut, "corr.txt:2: field column 6");
+  fs::remove_all(dir);
+}
+
+TEST(Cli, ListAndHelp) {
+  const CliRun list = run("list");
+  EXPECT_EQ(list.code, 0);
+  EXPECT_NE(list.output.find("clique"), std::string::npos);
+  EXPECT_NE(list.output.find("ransac"), std::string::npos);
+  for (const char* cmd : {"sweep --help", "run --help", "list --help", "--help"}) {
+    const CliRun r = run(cmd);
+    EXPECT_EQ(r.code, 0) << cmd;
+    EXPECT_NE(r.output.find("usage"), std::string::npos) << cmd;
+  }
+}
+
+TEST(Cli, SweepWritesAParsableReport) {
+  const fs::path out = fs::temp_directory_path() / "vb_cli_sweep.json";
+  fs::remove(out);
+  const CliRun r = run("sweep --dim 2,3 --n 60 --outliers 0.5,0.8 --trials 2 --seed 9 --quiet --out " +
+                    out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(out);
+  const auto doc = nlohmann::json::parse(in);
+  EXPECT_EQ(doc["context"]["seed"], 9);
+  EXPECT_EQ(doc["results"].size(), 2u * 2u * 2u * 2u);  // dims x ratios x trials x solvers
+  EXPECT_EQ(doc["aggregates"].size(), 2u * 2u * 2u);
+  fs::remove(out);
+}
+
+TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
+  const CliRun r = run("sweep --n 20 --outliers 0.5 --trials 1 --quiet --out /nonexistent/dir/r.json");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("cannot write report /nonexistent/dir/r.json"), std::string::npos) << r.output;
+}
+
+}  // namespace

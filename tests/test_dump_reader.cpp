@@ -1,0 +1,115 @@
+// The text dump reader: clear errors on malformed input; the real 3DMatch dump when present.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/compatibility_graph.hpp"
+#include "generators/dump_reader.hpp"
+#include "solvers/max_clique.hpp"
+
+namespace verifybench {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DumpReader : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("vb_dump_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  std::string error() {
+    try {
+      read_text_dump(dir_.string());
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST_F(DumpReader, Reads3DWithLabelsAndGroundTruth) {
+  write("corr.txt", "# comment\n0 0 0 1 0 0\n\n1 0 0 2 0 0\n0 1 0 1 1 0\n");
+  write("label.txt", "1\n1\n0\n");
+  write("GTmat.txt", "1 0 0 1\n0 1 0 0\n0 0 1 0\n0 0 0 1\n");
+  const auto set = std::get<LabeledSet<3>>(read_text_dump(dir_.string()));
+  ASSERT_EQ(set.corr.size(), 3);
+  EXPECT_EQ(set.corr.target(0, 1), 2.0);
+  EXPECT_EQ(set.truth.labels, (std::vector<std::uint8_t>{1, 1, 0}));
+  ASSERT_TRUE(set.truth.T_target_source.has_value());
+  EXPECT_EQ(set.truth.T_target_source->translation().x(), 1.0);
+}
+
+TEST_F(DumpReader, Reads2DFromFourColumns) {
+  write("corr.txt", "0 0 1 1\n2 0 3 1\n");
+  const auto set = std::get<LabeledSet<2>>(read_text_dump(dir_.string()));
+  EXPECT_EQ(set.corr.size(), 2);
+  EXPECT_TRUE(set.truth.labels.empty());
+  EXPECT_FALSE(set.truth.T_target_source.has_value());
+}
+
+TEST_F(DumpReader, NamesFileLineAndFieldOfABadNumber) {
+  write("corr.txt", "0 0 0 1 0 0\n0 0 0 1 x7 0\n");
+  const std::string e = error();
+  EXPECT_NE(e.find("corr.txt:2"), std::string::npos) << e;
+  EXPECT_NE(e.find("column 5"), std::string::npos) << e;
+  EXPECT_NE(e.find("'x7'"), std::string::npos) << e;
+}
+
+TEST_F(DumpReader, RejectsNonFiniteValues) {
+  write("corr.txt", "0 0 0 1 0 0\n0 0 nan 1 0 0\n");
+  EXPECT_NE(error().find("corr.txt:2: field column 3: 'nan' is not finite"), std::string::npos) << error();
+  write("corr.txt", "0 0 0 1 0 inf\n");
+  EXPECT_NE(error().find("corr.txt:1"), std::string::npos);
+}
+
+TEST_F(DumpReader, RejectsRaggedRowsAndWrongWidths) {
+  write("corr.txt", "0 0 0 1 0 0\n0 0 0 1 0\n");
+  EXPECT_NE(error().find("corr.txt:2: expected 6 fields"), std::string::npos) << error();
+  write("corr.txt", "0 0 0\n");
+  EXPECT_NE(error().find("expected 6 fields (xs ys zs xt yt zt) or 4"), std::string::npos) << error();
+}
+
+TEST_F(DumpReader, RejectsEmptyAndMissingFiles) {
+  write("corr.txt", "# nothing\n\n");
+  EXPECT_NE(error().find("no correspondences"), std::string::npos) << error();
+  fs::remove(dir_ / "corr.txt");
+  EXPECT_NE(error().find("corr.txt: missing"), std::string::npos) << error();
+  EXPECT_THROW(read_text_dump((dir_ / "nope").string()), InputError);
+}
+
+TEST_F(DumpReader, RejectsMismatchedLabelsAndBadGroundTruth) {
+  write("corr.txt", "0 0 0 1 0 0\n1 0 0 2 0 0\n");
+  write("label.txt", "1\n");
+  EXPECT_NE(error().find("has 1 labels but corr.txt has 2"), std::string::npos) << error();
+  write("label.txt", "1\n2\n");
+  EXPECT_NE(error().find("label.txt:2"), std::string::npos) << error();
+  write("label.txt", "1\n0\n");
+  write("GTmat.txt", "2 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n");
+  EXPECT_NE(error().find("not a rotation"), std::string::npos) << error();
+  write("GTmat.txt", "1 0 0 0\n0 1 0 0\n0 0 1 0\n");
+  EXPECT_NE(error().find("expected a 4x4 matrix"), std::string::npos) << error();
+}
+
+TEST(RealDump, ThreeDMatch6614HasKnownCliqueNumber) {
+  const std::string dir = std::string(VERIFYBENCH_SHARED_DATA) + "/3dmatch/corr_6614";
+  if (!fs::exists(dir + "/corr.txt")) GTEST_SKIP() << "shared data absent: " << dir;
+  const auto set = std::get<LabeledSet<3>>(read_text_dump(dir));
+  EXPECT_EQ(set.corr.size(), 6614);  // the dump's README
+  EXPECT_EQ(std::count(set.truth.labels.begin(), set.truth.labels.end(), 1), 85);
+  // omega = 60 at eps = 0.1 m, the figure PMC (TEASER++'s solver) gives for this dump.
+  const auto g = build_compatibility_graph(set.corr, GraphParams{0.1});
+  const auto r = max_clique(g);
+  EXPECT_TRUE(r.optimal);
+  EXPECT_EQ(r.clique.size(), 60u);
+  EXPECT_TRUE(g.is_clique(r.clique));
+}
+
+}  // namespace
+}  // namespace verifybench

@@ -1,0 +1,74 @@
+// The correspondence graph against its definition, Eq. (1), evaluated pair by pair.
+#include <gtest/gtest.h>
+
+#include "core/compatibility_graph.hpp"
+#include "generators/synthetic.hpp"
+
+namespace verifybench {
+namespace {
+
+template <int Dim>
+void check_against_definition(std::uint64_t seed) {
+  SyntheticParams p;
+  p.n = 150;
+  p.outlier_ratio = 0.6;
+  p.seed = seed;
+  const auto set = make_synthetic<Dim>(p);
+  const double eps = 0.4;
+  const BitGraph g = build_compatibility_graph(set.corr, GraphParams{eps});
+  long long edges = 0;
+  for (int i = 0; i < p.n; ++i) {
+    EXPECT_FALSE(g.adjacent(i, i));
+    for (int j = 0; j < p.n; ++j) {
+      if (i == j) continue;
+      const double dm = (set.corr.source.col(i) - set.corr.source.col(j)).norm();
+      const double dq = (set.corr.target.col(i) - set.corr.target.col(j)).norm();
+      ASSERT_EQ(g.adjacent(i, j), std::abs(dm - dq) < eps) << i << "," << j;
+      edges += i < j && g.adjacent(i, j);
+    }
+  }
+  EXPECT_EQ(g.edge_count(), edges);
+}
+
+TEST(CompatibilityGraph, MatchesDefinition2D) { check_against_definition<2>(1); }
+TEST(CompatibilityGraph, MatchesDefinition3D) { check_against_definition<3>(2); }
+
+TEST(CompatibilityGraph, NoiselessInliersFormAClique) {
+  SyntheticParams p;
+  p.n = 200;
+  p.outlier_ratio = 0.8;
+  p.noise = 0.0;
+  const auto set = make_synthetic<3>(p);
+  const BitGraph g = build_compatibility_graph(set.corr, GraphParams{1e-6});
+  std::vector<int> inliers;
+  for (int i = 0; i < p.n; ++i)
+    if (set.truth.labels[i]) inliers.push_back(i);
+  EXPECT_EQ(inliers.size(), 40u);
+  EXPECT_TRUE(g.is_clique(inliers));
+}
+
+TEST(CompatibilityGraph, RefusesGraphsOverTheMemoryCap) {
+  Correspondences<3> c;
+  c.source = Eigen::Matrix3Xd::Zero(3, 5000);
+  c.target = c.source;
+  GraphParams p;
+  p.max_bytes = 1 << 20;  // 5000 vertices need about 3 MiB
+  try {
+    build_compatibility_graph(c, p);
+    FAIL() << "expected std::length_error";
+  } catch (const std::length_error& e) {
+    EXPECT_NE(std::string(e.what()).find("5000 vertices"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(BitGraph::bytes_for(5000), 5000u * 79u * 8u);
+}
+
+TEST(CompatibilityGraph, RejectsNonPositiveEps) {
+  Correspondences<2> c;
+  c.source = Eigen::Matrix2Xd::Zero(2, 3);
+  c.target = c.source;
+  EXPECT_THROW(build_compatibility_graph(c, GraphParams{0.0}), std::invalid_argument);
+  EXPECT_THROW(build_compatibility_graph(c, GraphParams{-1.0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace verifybench

@@ -1,0 +1,136 @@
+// Exact maximum clique against a brute-force oracle, and its anytime behaviour.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "solvers/max_clique.hpp"
+#include "test_util.hpp"
+
+namespace verifybench {
+namespace {
+
+TEST(MaxClique, MatchesBruteForceOnRandomGraphs) {
+  std::mt19937_64 rng(20251122);
+  int graphs = 0;
+  for (int n = 1; n <= 24; ++n) {
+    for (double density : {0.1, 0.3, 0.5, 0.7, 0.85, 0.95}) {
+      for (int rep = 0; rep < 3; ++rep, ++graphs) {
+        const BitGraph g = test::random_graph(n, density, rng);
+        const CliqueSearchResult r = max_clique(g);
+        ASSERT_TRUE(r.optimal);
+        ASSERT_TRUE(g.is_clique(r.clique)) << "n=" << n << " density=" << density;
+        ASSERT_EQ(static_cast<int>(r.clique.size()), test::brute_force_clique_number(g))
+            << "n=" << n << " density=" << density << " rep=" << rep;
+        ASSERT_TRUE(std::is_sorted(r.clique.begin(), r.clique.end()));
+      }
+    }
+  }
+  EXPECT_EQ(graphs, 24 * 6 * 3);
+}
+
+TEST(MaxClique, EmptyGraphHasCliqueOfOneVertex) {
+  const BitGraph g(10);
+  const auto r = max_clique(g);
+  EXPECT_TRUE(r.optimal);
+  EXPECT_EQ(r.clique.size(), 1u);
+}
+
+TEST(MaxClique, NoVerticesNoClique) {
+  const auto r = max_clique(BitGraph(0));
+  EXPECT_TRUE(r.optimal);
+  EXPECT_TRUE(r.clique.empty());
+}
+
+TEST(MaxClique, CompleteGraphIsOneClique) {
+  for (int n : {1, 2, 63, 64, 65, 130}) {
+    BitGraph g(n);
+    for (int u = 0; u < n; ++u)
+      for (int v = u + 1; v < n; ++v) g.add_edge(u, v);
+    const auto r = max_clique(g);
+    EXPECT_EQ(static_cast<int>(r.clique.size()), n);
+  }
+}
+
+TEST(MaxClique, FindsPlantedCliqueAcrossWordBoundaries) {
+  std::mt19937_64 rng(7);
+  BitGraph g = test::random_graph(300, 0.1, rng);
+  std::vector<int> planted(300);
+  std::iota(planted.begin(), planted.end(), 0);
+  std::shuffle(planted.begin(), planted.end(), rng);
+  planted.resize(25);
+  for (std::size_t a = 0; a < planted.size(); ++a)
+    for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
+  std::sort(planted.begin(), planted.end());
+  const auto r = max_clique(g);
+  EXPECT_TRUE(r.optimal);
+  // G(300, 0.1) alone has clique number far below 25, so the planted clique is the unique maximum.
+  EXPECT_EQ(r.clique, planted);
+}
+
+TEST(MaxClique, PermutingVerticesKeepsTheCliqueNumber) {
+  std::mt19937_64 rng(11);
+  for (int rep = 0; rep < 20; ++rep) {
+    const BitGraph g = test::random_graph(60, 0.6, rng);
+    std::vector<int> perm(60);
+    std::iota(perm.begin(), perm.end(), 0);
+    std::shuffle(perm.begin(), perm.end(), rng);
+    BitGraph h(60);
+    for (int u = 0; u < 60; ++u)
+      for (int v = u + 1; v < 60; ++v)
+        if (g.adjacent(u, v)) h.add_edge(perm[u], perm[v]);
+    EXPECT_EQ(max_clique(g).clique.size(), max_clique(h).clique.size());
+  }
+}
+
+TEST(MaxClique, NodeLimitReturnsBestSoFarWithStatus) {
+  std::mt19937_64 rng(3);
+  const BitGraph g = test::random_graph(200, 0.9, rng);  // far too hard for 50 nodes
+  CliqueSearchParams p;
+  p.node_limit = 50;
+  const auto r = max_clique(g, p);
+  EXPECT_FALSE(r.optimal);
+  EXPECT_LE(r.nodes, 50);
+  EXPECT_TRUE(g.is_clique(r.clique));
+  EXPECT_GE(r.clique.size(), 2u);  // the greedy incumbent is kept
+}
+
+TEST(MaxClique, TimeLimitReturnsBestSoFarWithStatus) {
+  std::mt19937_64 rng(5);
+  const BitGraph g = test::random_graph(400, 0.9, rng);  // minutes to prove optimal
+  CliqueSearchParams p;
+  p.time_limit_s = 0.05;
+  const auto r = max_clique(g, p);
+  EXPECT_FALSE(r.optimal);
+  EXPECT_TRUE(g.is_clique(r.clique));
+  EXPECT_LE(static_cast<int>(r.clique.size()), r.upper_bound);
+}
+
+TEST(CoreDecomposition, MatchesNaivePeeling) {
+  std::mt19937_64 rng(17);
+  for (int rep = 0; rep < 30; ++rep) {
+    const BitGraph g = test::random_graph(40, 0.05 + 0.03 * rep, rng);
+    const auto cd = core_decomposition(g);
+    // Oracle: core(v) = largest k such that v survives repeatedly deleting vertices of degree < k.
+    std::vector<int> core(g.size(), 0);
+    for (int k = 1; k < g.size(); ++k) {
+      std::vector<bool> alive(g.size(), true);
+      for (bool changed = true; changed;) {
+        changed = false;
+        for (int u = 0; u < g.size(); ++u) {
+          if (!alive[u]) continue;
+          int d = 0;
+          for (int w = 0; w < g.size(); ++w) d += alive[w] && g.adjacent(u, w);
+          if (d < k) alive[u] = false, changed = true;
+        }
+      }
+      for (int v = 0; v < g.size(); ++v)
+        if (alive[v]) core[v] = k;
+    }
+    ASSERT_EQ(cd.core, core);
+    ASSERT_EQ(cd.order.size(), static_cast<std::size_t>(g.size()));
+  }
+}
+
+}  // namespace
+}  // namespace verifybench

@@ -1,0 +1,49 @@
+// Metrics against values computed by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/metrics.hpp"
+
+namespace verifybench {
+namespace {
+
+TEST(Metrics, RotationErrorOfKnownAngles3D) {
+  for (double deg : {0.0, 1.0, 30.0, 90.0, 179.0, 180.0}) {
+    Rigid<3> a = Rigid<3>::Identity(), b = Rigid<3>::Identity();
+    a.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    b.linear() = Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d(-1, 0, 2).normalized()) * a.linear();
+    EXPECT_NEAR(rotation_error_deg<3>(b, a), deg, 1e-5);
+  }
+}
+
+TEST(Metrics, RotationErrorOfKnownAngles2D) {
+  for (double deg : {0.0, 5.0, 90.0, 135.0, 180.0}) {
+    Rigid<2> a = Rigid<2>::Identity(), b = Rigid<2>::Identity();
+    a.linear() = Eigen::Rotation2Dd(1.0).toRotationMatrix();
+    b.linear() = Eigen::Rotation2Dd(1.0 - deg * M_PI / 180).toRotationMatrix();
+    EXPECT_NEAR(rotation_error_deg<2>(b, a), deg, 1e-5);
+  }
+}
+
+TEST(Metrics, TranslationError) {
+  Rigid<3> a = Rigid<3>::Identity(), b = Rigid<3>::Identity();
+  b.translation() << 3, 4, 0;
+  EXPECT_DOUBLE_EQ(translation_error<3>(a, b), 5.0);
+}
+
+TEST(Metrics, InlierScoresByHand) {
+  const std::vector<std::uint8_t> labels{1, 1, 1, 1, 0, 0, 0, 0};
+  const auto s = inlier_scores({0, 1, 4}, labels);  // 2 of 3 right, 2 of 4 found
+  EXPECT_DOUBLE_EQ(s.precision, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(s.recall, 0.5);
+  EXPECT_DOUBLE_EQ(s.f1, 2 * (2.0 / 3.0) * 0.5 / (2.0 / 3.0 + 0.5));
+  const auto none = inlier_scores({}, labels);
+  EXPECT_TRUE(std::isnan(none.precision));
+  EXPECT_DOUBLE_EQ(none.recall, 0.0);
+  EXPECT_TRUE(std::isnan(none.f1));
+  EXPECT_THROW(inlier_scores({8}, labels), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace verifybench

@@ -1,0 +1,60 @@
+#pragma once
+// Helpers shared by the tests: seeded random graphs and transforms, and a brute-force clique oracle.
+#include <random>
+#include <vector>
+
+#include "core/bitgraph.hpp"
+#include "core/correspondences.hpp"
+
+namespace verifybench::test {
+
+inline BitGraph random_graph(int n, double density, std::mt19937_64& rng) {
+  BitGraph g(n);
+  std::bernoulli_distribution edge(density);
+  for (int u = 0; u < n; ++u) {
+    for (int v = u + 1; v < n; ++v) {
+      if (edge(rng)) g.add_edge(u, v);
+    }
+  }
+  return g;
+}
+
+/// Clique number by exhaustive include/exclude recursion (n <= ~30): obviously correct, slow.
+inline int brute_force_clique_number(const BitGraph& g) {
+  int best = 0;
+  std::vector<int> chosen;
+  auto rec = [&](auto&& self, int v) -> void {
+    if (v == g.size()) {
+      best = std::max(best, static_cast<int>(chosen.size()));
+      return;
+    }
+    if (static_cast<int>(chosen.size()) + (g.size() - v) <= best) return;  // cannot beat best
+    bool fits = true;
+    for (int u : chosen) fits = fits && g.adjacent(u, v);
+    if (fits) {
+      chosen.push_back(v);
+      self(self, v + 1);
+      chosen.pop_back();
+    }
+    self(self, v + 1);
+  };
+  rec(rec, 0);
+  return best;
+}
+
+template <int Dim>
+Rigid<Dim> random_rigid(std::mt19937_64& rng, double max_translation = 5.0) {
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::uniform_real_distribution<double> t(-max_translation, max_translation);
+  Rigid<Dim> T = Rigid<Dim>::Identity();
+  if constexpr (Dim == 2) {
+    T.linear() = Eigen::Rotation2Dd(std::uniform_real_distribution<double>(-M_PI, M_PI)(rng))
+                     .toRotationMatrix();
+  } else {
+    T.linear() = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized().toRotationMatrix();
+  }
+  for (int d = 0; d < Dim; ++d) T.translation()(d) = t(rng);
+  return T;
+}
+
+}  // namespace verifybench::test
