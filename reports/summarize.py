@@ -1,0 +1,48 @@
+#!/usr/bin/python3
+"""Markdown tables from verifybench reports.
+
+usage: summarize.py REPORT.json [REPORT.json ...]
+
+One row per aggregate (solver x setting): dim, n, outlier ratio, solver, trials, success rate,
+accept rate, median and p90 time, median inliers and median errors; then, for real dumps, one row
+per result. Columns come from the reports only; nothing is recomputed.
+"""
+import json
+import sys
+
+
+def fail(msg):
+    print(f"summarize: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def fmt(v, spec):
+    return "-" if v is None else format(v, spec)
+
+
+def main(paths):
+    if not paths:
+        fail("no report given (usage: summarize.py REPORT.json [...])")
+    aggs = []
+    for path in paths:
+        try:
+            with open(path) as f:
+                doc = json.load(f)
+        except (OSError, json.JSONDecodeError) as e:
+            fail(f"{path}: {e}")
+        if doc.get("schema_version") != 1 or "aggregates" not in doc:
+            fail(f"{path}: not a schema_version 1 verifybench report")
+        aggs += doc["aggregates"]
+    print("| dataset | dim | n | outliers | solver | trials | success | accepted | median ms | p90 ms "
+          "| median inliers | median rot err (deg) | median trans err |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for a in aggs:
+        print(f"| {a['dataset'].split('/')[-1]} | {a['dim']} | {a['n']} | {fmt(a['outlier_ratio'], '.2f')} "
+              f"| {a['solver']} | {a['trials']} | {fmt(a['success_rate'], '.2f')} "
+              f"| {fmt(a['accept_rate'], '.2f')} | {fmt(a['median_time_ms'], '.2f')} "
+              f"| {fmt(a['p90_time_ms'], '.2f')} | {fmt(a['median_inliers'], '.0f')} "
+              f"| {fmt(a['median_rotation_error_deg'], '.3f')} | {fmt(a['median_translation_error'], '.4f')} |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
