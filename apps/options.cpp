@@ -41,7 +41,11 @@ void Options::parse(const std::vector<std::string>& args) {
       help_ = true;
       continue;
     }
-    if (arg.rfind("--", 0) != 0) throw UsageError("unexpected argument '" + arg + "'");
+    if (arg.rfind("--", 0) != 0) {
+      if (positional_name_.empty()) throw UsageError("unexpected argument '" + arg + "'");
+      positional_.push_back(arg);
+      continue;
+    }
     std::string name = arg.substr(2), value;
     const auto eq = name.find('=');
     const bool inline_value = eq != std::string::npos;

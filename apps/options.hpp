@@ -21,8 +21,14 @@ class Options {
   Options& add(const std::string& name, const std::string& value_name, const std::string& fallback,
                const std::string& help);
 
+  /// Accepts arguments that are not options (e.g. input files), kept in positional().
+  Options& allow_positional(const std::string& name) {
+    positional_name_ = name;
+    return *this;
+  }
   /// Throws UsageError on an unknown option, a missing value, a repeated option or a stray argument.
   void parse(const std::vector<std::string>& args);
+  const std::vector<std::string>& positional() const { return positional_; }
   std::string help() const;
   bool help_requested() const { return help_; }
 
@@ -43,6 +49,8 @@ class Options {
   std::vector<std::string> order_;
   std::map<std::string, Spec> specs_;
   std::map<std::string, std::string> values_;
+  std::vector<std::string> positional_;
+  std::string positional_name_;
   bool help_ = false;
 };
 

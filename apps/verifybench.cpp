@@ -5,7 +5,12 @@
 
 #include "apps/harness.hpp"
 #include "apps/options.hpp"
+#include <filesystem>
+
+#include "generators/dimacs.hpp"
 #include "generators/dump_reader.hpp"
+#include "solvers/max_clique.hpp"
+#include "solvers/timer.hpp"
 #include "reports/report.hpp"
 #include "solvers/registry.hpp"
 
@@ -20,6 +25,7 @@ const char* kUsage =
     "  list    registered solvers\n"
     "  sweep   robustness sweep on synthetic sets (success rate and time vs outlier ratio)\n"
     "  run     solvers on a real correspondence dump (DIR/corr.txt [label.txt] [GTmat.txt])\n"
+    "  dimacs  maximum clique algorithms on DIMACS graphs (FILE.clq ...)\n"
     "`verifybench <command> --help` lists a command's options.\n";
 
 void add_solver_options(vb::Options& o) {
@@ -111,8 +117,93 @@ int finish(const std::string& out, const json& parameters, const std::vector<vb:
 }
 
 int cmd_list() {
+  std::printf("solvers (sweep, run --solvers):\n");
   for (const auto& info : vb::SolverRegistry::list()) {
-    std::printf("%-10s %s\n", info.name.c_str(), info.description.c_str());
+    std::printf("  %-18s %s\n", info.name.c_str(), info.description.c_str());
+  }
+  std::printf("clique algorithms (dimacs --algorithms; solver clique-<name>):\n");
+  for (const auto& info : vb::CliqueAlgorithms::list()) {
+    std::printf("  %-18s %s%s\n", info.name.c_str(), info.description.c_str(),
+                info.exact ? "" : " [heuristic]");
+  }
+  return 0;
+}
+
+int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  vb::Options o;
+  o.allow_positional("FILE.clq")
+      .add("algorithms", "A,B", vb::kDefaultCliqueAlgorithm, "clique algorithms (see `verifybench list`)")
+      .add("time-limit", "S", "60", "per-search time limit [s]")
+      .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
+      .add("out", "FILE.json", "", "report path (required; written atomically)")
+      .add("quiet", "", "", "no progress lines");
+  o.parse(args);
+  if (o.help_requested()) {
+    std::cout << "usage: verifybench dimacs FILE.clq... [options] --out FILE.json\n"
+                 "Known clique numbers are taken from MANIFEST.tsv beside each file when present.\n"
+              << o.help();
+    return 0;
+  }
+  if (o.positional().empty()) throw vb::UsageError("no DIMACS file given");
+  const auto names = o.list("algorithms");
+  for (const auto& n : names) vb::CliqueAlgorithms::get(n);  // throws with the known names
+  vb::CliqueSearchParams params;
+  params.time_limit_s = o.real("time-limit", 1e-6, 1e9);
+  const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
+  const std::string out = o.required("out");
+
+  std::vector<vb::CliqueRecord> rows;
+  for (const std::string& file : o.positional()) {
+    const vb::BitGraph g = vb::read_dimacs(file, max_bytes);
+    const std::filesystem::path path(file);
+    std::optional<int> known;
+    const auto manifest = path.parent_path() / "MANIFEST.tsv";
+    if (std::filesystem::exists(manifest)) {
+      const auto omega = vb::read_manifest(manifest.string());
+      const auto it = omega.find(path.stem().string());
+      if (it != omega.end()) known = it->second;
+    }
+    for (const auto& name : names) {
+      const auto& algorithm = vb::CliqueAlgorithms::get(name);
+      vb::CliqueRecord r;
+      r.graph = file;
+      r.algorithm = name;
+      r.n = g.size();
+      r.edges = g.edge_count();
+      r.known_omega = known;
+      try {
+        vb::StopWatch clock;
+        const vb::CliqueSearchResult res = algorithm.run(g, params);
+        r.time_ms = clock.ms();
+        r.status = res.stopped ? "time_limit" : res.optimal ? "ok" : "unproven";
+        r.omega = static_cast<int>(res.clique.size());
+        r.nodes = res.nodes;
+        r.upper_bound = res.upper_bound;
+        for (int v : res.clique) r.clique.push_back(v + 1);
+        if (!g.is_clique(res.clique)) {
+          r.status = "error";
+          r.message = "the returned vertex set is not a clique";
+        }
+      } catch (const std::exception& e) {
+        r.status = "error";
+        r.message = e.what();
+      }
+      if (!o.flag("quiet")) {
+        std::fprintf(stderr, "  %-28s %-12s omega=%-4d known=%-4s %-10s %10.2f ms\n",
+                     path.filename().c_str(), name.c_str(), r.omega,
+                     known ? std::to_string(*known).c_str() : "-", r.status.c_str(), r.time_ms);
+      }
+      rows.push_back(std::move(r));
+    }
+  }
+  json parameters = {{"mode", "dimacs"}, {"algorithms", names}, {"time_limit_s", params.time_limit_s}};
+  vb::write_json_atomic(out, vb::make_report(vb::make_context(argv, 0), parameters, rows));
+  std::cout << out << "\n";
+  for (const auto& r : rows) {
+    if (r.status == "error") {
+      std::cerr << "verifybench: error: " << r.algorithm << " on " << r.graph << ": " << r.message << "\n";
+      return 1;
+    }
   }
   return 0;
 }
@@ -192,6 +283,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
 int main(int argc, char** argv) {
   const std::vector<std::string> all(argv, argv + argc);
   vb::register_builtin_solvers();
+  vb::register_clique_algorithms();
   if (argc < 2) {
     std::cerr << "verifybench: error: no command given\n" << kUsage;
     return 2;
@@ -214,7 +306,8 @@ int main(int argc, char** argv) {
     }
     if (cmd == "sweep") return cmd_sweep(rest, all);
     if (cmd == "run") return cmd_run(rest, all);
-    throw vb::UsageError("unknown command '" + cmd + "' (commands: list, sweep, run)");
+    if (cmd == "dimacs") return cmd_dimacs(rest, all);
+    throw vb::UsageError("unknown command '" + cmd + "' (commands: list, sweep, run, dimacs)");
   } catch (const vb::UsageError& e) {  // bad command line
     std::cerr << "verifybench: error: " << e.what() << "\n";
   } catch (const vb::InputError& e) {  // malformed input file

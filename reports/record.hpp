@@ -43,4 +43,20 @@ struct TrialRecord {
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 
+/// One maximum clique search on one graph (DIMACS mode).
+struct CliqueRecord {
+  std::string graph;             ///< file path
+  std::string algorithm;
+  int n = 0;
+  long long edges = 0;
+  std::string status;            ///< ok (proven maximum) | time_limit | unproven (heuristic) | error
+  std::string message;           ///< error text
+  int omega = 0;                 ///< size of the clique found
+  std::optional<int> known_omega;  ///< from MANIFEST.tsv beside the graph, when listed
+  double time_ms = 0;            ///< the search (the graph is read once, before, untimed)
+  long long nodes = 0;
+  int upper_bound = 0;
+  std::vector<int> clique;       ///< 1-based DIMACS ids, ascending
+};
+
 }  // namespace verifybench

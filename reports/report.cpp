@@ -182,6 +182,57 @@ json make_report(const json& context, const json& parameters, const std::vector<
           {"aggregates", aggregate(rows)}};
 }
 
+namespace {
+json correctness(const CliqueRecord& r) {
+  if (!r.known_omega || r.status == "error") return nullptr;
+  return r.status == "ok" ? r.omega == *r.known_omega : r.omega <= *r.known_omega;
+}
+}  // namespace
+
+json to_json(const CliqueRecord& r) {
+  json j = {{"graph", r.graph},       {"algorithm", r.algorithm},
+            {"n", r.n},               {"edges", r.edges},
+            {"status", r.status},     {"omega", r.omega},
+            {"known_omega", r.known_omega ? json(*r.known_omega) : json(nullptr)},
+            {"correct", correctness(r)},
+            {"time_ms", r.time_ms},   {"nodes", r.nodes},
+            {"upper_bound", r.upper_bound}, {"clique", r.clique}};
+  if (!r.message.empty()) j["message"] = r.message;
+  return j;
+}
+
+json make_report(const json& context, const json& parameters, const std::vector<CliqueRecord>& rows) {
+  json results = json::array(), aggregates = json::array();
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<const CliqueRecord*>> by_algorithm;
+  for (const auto& r : rows) {
+    results.push_back(to_json(r));
+    if (by_algorithm[r.algorithm].empty()) order.push_back(r.algorithm);
+    by_algorithm[r.algorithm].push_back(&r);
+  }
+  for (const auto& name : order) {
+    int proven = 0, correct = 0, wrong = 0;
+    double total = 0;
+    std::vector<double> times;
+    for (const CliqueRecord* r : by_algorithm[name]) {
+      proven += r->status == "ok";
+      const json c = correctness(*r);
+      correct += c == true;
+      wrong += c == false;
+      total += r->time_ms;
+      times.push_back(r->time_ms);
+    }
+    aggregates.push_back({{"algorithm", name}, {"graphs", by_algorithm[name].size()},
+                          {"proven", proven}, {"correct", correct}, {"wrong", wrong},
+                          {"total_time_ms", total}, {"median_time_ms", median(times)}});
+  }
+  return {{"schema_version", kReportSchemaVersion},
+          {"context", context},
+          {"parameters", parameters},
+          {"results", std::move(results)},
+          {"aggregates", std::move(aggregates)}};
+}
+
 void write_json_atomic(const std::string& path, const json& doc) {
   const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   {

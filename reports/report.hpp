@@ -25,6 +25,13 @@ nlohmann::json aggregate(const std::vector<TrialRecord>& rows);
 nlohmann::json make_report(const nlohmann::json& context, const nlohmann::json& parameters,
                            const std::vector<TrialRecord>& rows);
 
+/// DIMACS mode: `correct` is omega == known_omega for a proven result, omega <= known_omega for an
+/// unproven one, null when unknown. Aggregates per algorithm: graphs, proven, correct, total and
+/// median time.
+nlohmann::json to_json(const CliqueRecord& row);
+nlohmann::json make_report(const nlohmann::json& context, const nlohmann::json& parameters,
+                           const std::vector<CliqueRecord>& rows);
+
 /// Writes to PATH.tmp.PID beside the target, then renames, so a reader never sees half a report.
 /// Throws std::runtime_error naming the path on failure and leaves no temporary file behind.
 void write_json_atomic(const std::string& path, const nlohmann::json& doc);

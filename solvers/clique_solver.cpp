@@ -1,5 +1,6 @@
-// `clique`: the CliReg verifier. Correspondence graph (Eq. 1) -> exact maximum clique C* ->
-// least-squares rigid fit on C* -> accept when |C*| reaches the threshold.
+// `clique`: the CliReg verifier. Correspondence graph (Eq. 1) -> maximum clique C* ->
+// least-squares rigid fit on C* -> accept when |C*| reaches the threshold. One solver per clique
+// algorithm of max_clique.hpp (`clique-<algorithm>`), and `clique` for the default one.
 #include "core/compatibility_graph.hpp"
 #include "core/rigid_fit.hpp"
 #include "solvers/max_clique.hpp"
@@ -12,20 +13,23 @@ namespace {
 
 class CliqueSolver : public SolverBase<CliqueSolver> {
  public:
+  explicit CliqueSolver(CliqueAlgorithm algorithm) : algorithm_(std::move(algorithm)) {}
+
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
     StopWatch total;
 
     StopWatch graph_clock;
-    const BitGraph graph = build_compatibility_graph(corr, GraphParams{params.eps, params.max_graph_bytes});
+    const BitGraph graph = build_compatibility_graph(
+        corr, GraphParams{params.eps, params.max_graph_bytes, params.threads});
     result.times.graph_ms = graph_clock.ms();
     result.counters.graph_edges = graph.edge_count();
 
     StopWatch search_clock;
     CliqueSearchParams search;
     search.time_limit_s = params.time_limit_s - total.ms() / 1000.0;
-    const CliqueSearchResult clique = max_clique(graph, search);
+    const CliqueSearchResult clique = algorithm_(graph, search);
     result.times.search_ms = search_clock.ms();
     result.counters.branch_nodes = clique.nodes;
     result.inliers = clique.clique;
@@ -34,18 +38,27 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
     if (auto T = fit_rigid(corr, result.inliers)) result.T_target_source = *T;
     result.times.fit_ms = fit_clock.ms();
 
-    decide(result, params, clique.optimal);
+    decide(result, params, !clique.stopped);
     return result;
   }
+
+ private:
+  CliqueAlgorithm algorithm_;
 };
 
 }  // namespace
 
-void register_clique_solver() {
+void register_clique_solvers() {
+  register_clique_algorithms();
+  const CliqueAlgorithmInfo& default_algorithm = CliqueAlgorithms::get(kDefaultCliqueAlgorithm);
   SolverRegistry::add({"clique",
-                       "CliReg: exact maximum clique (bitset branch and bound, colouring bound, "
-                       "k-core pruning) on the pairwise-distance graph, then least-squares fit",
-                       [] { return std::make_unique<CliqueSolver>(); }});
+                       "CliReg: exact maximum clique (" + default_algorithm.name +
+                           ") on the pairwise-distance graph of Eq. (1), then least-squares fit",
+                       [run = default_algorithm.run] { return std::make_unique<CliqueSolver>(run); }});
+  for (const CliqueAlgorithmInfo& info : CliqueAlgorithms::list()) {
+    SolverRegistry::add({"clique-" + info.name, "clique solver with " + info.description,
+                         [run = info.run] { return std::make_unique<CliqueSolver>(run); }});
+  }
 }
 
 }  // namespace verifybench

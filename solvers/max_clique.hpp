@@ -1,7 +1,15 @@
 #pragma once
-// Exact maximum clique by bitset branch and bound with a greedy colouring bound (BBMC, San Segundo
-// et al. 2011), after k-core pruning seeded by a greedy clique (as PMC does inside TEASER++).
+// Maximum clique algorithms on bitset graphs, registered by name so that the correspondence
+// solvers, the DIMACS mode and the benchmarks all run the same code:
+//   bbmc        BBMC (San Segundo et al. 2011): bitset branch and bound, greedy colouring bound,
+//               min-width initial order; exact
+//   bbmc-kcore  bbmc after a greedy lower bound and k-core pruning (as PMC does inside TEASER++)
+//   bbmc-dec    PMC-style decomposition: for each vertex in degeneracy order, BBMC on its later
+//               neighbours (a compact subgraph of at most degeneracy vertices); exact
+//   greedy      the greedy clique alone: no optimality proof (to show what exactness buys)
+#include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "core/bitgraph.hpp"
@@ -15,11 +23,33 @@ struct CliqueSearchParams {
 
 struct CliqueSearchResult {
   std::vector<int> clique;  ///< vertex ids, ascending; the best found so far when !optimal
-  bool optimal = false;     ///< the search finished, so clique is maximum
+  bool optimal = false;     ///< proven maximum (an exact algorithm that finished)
+  bool stopped = false;     ///< the time or node limit cut the search short
   long long nodes = 0;      ///< branch-and-bound nodes expanded
-  int upper_bound = 0;      ///< degeneracy + 1, a bound on the clique number
+  int upper_bound = 0;      ///< an upper bound on the clique number (degeneracy + 1 at least)
 };
 
+using CliqueAlgorithm = std::function<CliqueSearchResult(const BitGraph&, const CliqueSearchParams&)>;
+
+struct CliqueAlgorithmInfo {
+  std::string name;
+  std::string description;
+  bool exact = true;  ///< proves optimality when it finishes
+  CliqueAlgorithm run;
+};
+
+class CliqueAlgorithms {
+ public:
+  static void add(CliqueAlgorithmInfo info);  ///< throws std::logic_error on a duplicate name
+  static const CliqueAlgorithmInfo& get(const std::string& name);  ///< throws std::invalid_argument
+  static std::vector<CliqueAlgorithmInfo> list();  ///< sorted by name
+};
+
+/// Registers bbmc, bbmc-kcore, bbmc-dec, greedy and the peers built in (idempotent).
+void register_clique_algorithms();
+
+/// The default exact algorithm (the one behind the `clique` solver).
+inline constexpr const char* kDefaultCliqueAlgorithm = "bbmc";
 CliqueSearchResult max_clique(const BitGraph& g, const CliqueSearchParams& params = {});
 
 /// Core numbers (Batagelj & Zaversnik 2003) and the smallest-last removal order.
@@ -28,5 +58,9 @@ struct CoreDecomposition {
   std::vector<int> order;  ///< vertices in removal order (non-decreasing core)
 };
 CoreDecomposition core_decomposition(const BitGraph& g);
+
+/// Greedy clique from each vertex that could beat the incumbent, highest core first, adding the
+/// candidate of highest core number each step.
+std::vector<int> greedy_clique(const BitGraph& g, const CoreDecomposition& cd);
 
 }  // namespace verifybench

@@ -19,6 +19,7 @@ struct SolverParams {
   bool ransac_adaptive = false;   ///< RANSAC: stop at k = log(1-p) / log(1-w^s)
   double ransac_confidence = 0.999;  ///< RANSAC: p of the adaptive count, in (0, 1)
   std::size_t max_graph_bytes = std::size_t{4} << 30;  ///< refuse larger correspondence graphs
+  int threads = 1;  ///< worker threads for graph construction (0 = all cores); results do not depend on it
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;

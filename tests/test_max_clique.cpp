@@ -1,4 +1,4 @@
-// Exact maximum clique against a brute-force oracle, and its anytime behaviour.
+// Every registered maximum clique algorithm against a brute-force oracle, and the anytime limits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,49 +10,53 @@
 namespace verifybench {
 namespace {
 
-TEST(MaxClique, MatchesBruteForceOnRandomGraphs) {
+std::vector<std::string> exact_algorithms() {
+  register_clique_algorithms();
+  std::vector<std::string> names;
+  for (const auto& info : CliqueAlgorithms::list())
+    if (info.exact) names.push_back(info.name);
+  return names;
+}
+
+CliqueSearchResult solve(const std::string& algorithm, const BitGraph& g, CliqueSearchParams p = {}) {
+  return CliqueAlgorithms::get(algorithm).run(g, p);
+}
+
+class Exact : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Exact, MatchesBruteForceOnRandomGraphs) {
   std::mt19937_64 rng(20251122);
   int graphs = 0;
   for (int n = 1; n <= 24; ++n) {
     for (double density : {0.1, 0.3, 0.5, 0.7, 0.85, 0.95}) {
       for (int rep = 0; rep < 3; ++rep, ++graphs) {
         const BitGraph g = test::random_graph(n, density, rng);
-        const CliqueSearchResult r = max_clique(g);
+        const CliqueSearchResult r = solve(GetParam(), g);
         ASSERT_TRUE(r.optimal);
+        ASSERT_FALSE(r.stopped);
         ASSERT_TRUE(g.is_clique(r.clique)) << "n=" << n << " density=" << density;
         ASSERT_EQ(static_cast<int>(r.clique.size()), test::brute_force_clique_number(g))
             << "n=" << n << " density=" << density << " rep=" << rep;
         ASSERT_TRUE(std::is_sorted(r.clique.begin(), r.clique.end()));
+        ASSERT_LE(static_cast<int>(r.clique.size()), r.upper_bound);
       }
     }
   }
   EXPECT_EQ(graphs, 24 * 6 * 3);
 }
 
-TEST(MaxClique, EmptyGraphHasCliqueOfOneVertex) {
-  const BitGraph g(10);
-  const auto r = max_clique(g);
-  EXPECT_TRUE(r.optimal);
-  EXPECT_EQ(r.clique.size(), 1u);
-}
-
-TEST(MaxClique, NoVerticesNoClique) {
-  const auto r = max_clique(BitGraph(0));
-  EXPECT_TRUE(r.optimal);
-  EXPECT_TRUE(r.clique.empty());
-}
-
-TEST(MaxClique, CompleteGraphIsOneClique) {
-  for (int n : {1, 2, 63, 64, 65, 130}) {
+TEST_P(Exact, EdgeCaseGraphs) {
+  EXPECT_EQ(solve(GetParam(), BitGraph(10)).clique.size(), 1u);  // no edges
+  EXPECT_TRUE(solve(GetParam(), BitGraph(0)).clique.empty());    // no vertices
+  for (int n : {1, 2, 63, 64, 65, 130}) {                         // complete graphs
     BitGraph g(n);
     for (int u = 0; u < n; ++u)
       for (int v = u + 1; v < n; ++v) g.add_edge(u, v);
-    const auto r = max_clique(g);
-    EXPECT_EQ(static_cast<int>(r.clique.size()), n);
+    EXPECT_EQ(static_cast<int>(solve(GetParam(), g).clique.size()), n) << n;
   }
 }
 
-TEST(MaxClique, FindsPlantedCliqueAcrossWordBoundaries) {
+TEST_P(Exact, FindsPlantedCliqueAcrossWordBoundaries) {
   std::mt19937_64 rng(7);
   BitGraph g = test::random_graph(300, 0.1, rng);
   std::vector<int> planted(300);
@@ -62,15 +66,15 @@ TEST(MaxClique, FindsPlantedCliqueAcrossWordBoundaries) {
   for (std::size_t a = 0; a < planted.size(); ++a)
     for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
   std::sort(planted.begin(), planted.end());
-  const auto r = max_clique(g);
+  const auto r = solve(GetParam(), g);
   EXPECT_TRUE(r.optimal);
   // G(300, 0.1) alone has clique number far below 25, so the planted clique is the unique maximum.
   EXPECT_EQ(r.clique, planted);
 }
 
-TEST(MaxClique, PermutingVerticesKeepsTheCliqueNumber) {
+TEST_P(Exact, PermutingVerticesKeepsTheCliqueNumber) {
   std::mt19937_64 rng(11);
-  for (int rep = 0; rep < 20; ++rep) {
+  for (int rep = 0; rep < 10; ++rep) {
     const BitGraph g = test::random_graph(60, 0.6, rng);
     std::vector<int> perm(60);
     std::iota(perm.begin(), perm.end(), 0);
@@ -79,9 +83,27 @@ TEST(MaxClique, PermutingVerticesKeepsTheCliqueNumber) {
     for (int u = 0; u < 60; ++u)
       for (int v = u + 1; v < 60; ++v)
         if (g.adjacent(u, v)) h.add_edge(perm[u], perm[v]);
-    EXPECT_EQ(max_clique(g).clique.size(), max_clique(h).clique.size());
+    EXPECT_EQ(solve(GetParam(), g).clique.size(), solve(GetParam(), h).clique.size());
   }
 }
+
+TEST_P(Exact, TimeLimitReturnsBestSoFarWithStatus) {
+  std::mt19937_64 rng(5);
+  const BitGraph g = test::random_graph(400, 0.9, rng);  // minutes to prove optimal for any of them
+  CliqueSearchParams p;
+  p.time_limit_s = 0.05;
+  const auto r = solve(GetParam(), g, p);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_FALSE(r.optimal);
+  EXPECT_TRUE(g.is_clique(r.clique));
+}
+
+INSTANTIATE_TEST_SUITE_P(Algorithms, Exact, ::testing::ValuesIn(exact_algorithms()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 TEST(MaxClique, NodeLimitReturnsBestSoFarWithStatus) {
   std::mt19937_64 rng(3);
@@ -89,21 +111,29 @@ TEST(MaxClique, NodeLimitReturnsBestSoFarWithStatus) {
   CliqueSearchParams p;
   p.node_limit = 50;
   const auto r = max_clique(g, p);
-  EXPECT_FALSE(r.optimal);
+  EXPECT_TRUE(r.stopped);
   EXPECT_LE(r.nodes, 50);
   EXPECT_TRUE(g.is_clique(r.clique));
   EXPECT_GE(r.clique.size(), 2u);  // the greedy incumbent is kept
 }
 
-TEST(MaxClique, TimeLimitReturnsBestSoFarWithStatus) {
-  std::mt19937_64 rng(5);
-  const BitGraph g = test::random_graph(400, 0.9, rng);  // minutes to prove optimal
-  CliqueSearchParams p;
-  p.time_limit_s = 0.05;
-  const auto r = max_clique(g, p);
-  EXPECT_FALSE(r.optimal);
-  EXPECT_TRUE(g.is_clique(r.clique));
-  EXPECT_LE(static_cast<int>(r.clique.size()), r.upper_bound);
+TEST(MaxClique, GreedyIsAValidCliqueNoLargerThanOptimal) {
+  register_clique_algorithms();
+  std::mt19937_64 rng(23);
+  int below = 0;
+  for (int rep = 0; rep < 200; ++rep) {
+    const BitGraph g = test::random_graph(22, 0.6, rng);
+    const auto r = solve("greedy", g);
+    const int omega = test::brute_force_clique_number(g);
+    ASSERT_TRUE(g.is_clique(r.clique));
+    ASSERT_LE(static_cast<int>(r.clique.size()), omega);
+    below += static_cast<int>(r.clique.size()) < omega;
+    if (r.optimal) {
+      ASSERT_EQ(static_cast<int>(r.clique.size()), omega);  // only when bound-certified
+    }
+  }
+  EXPECT_FALSE(CliqueAlgorithms::get("greedy").exact);
+  EXPECT_THROW(CliqueAlgorithms::get("nope"), std::invalid_argument);
 }
 
 TEST(CoreDecomposition, MatchesNaivePeeling) {

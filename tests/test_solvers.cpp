@@ -6,6 +6,7 @@
 
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
+#include "solvers/max_clique.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
@@ -22,13 +23,19 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     names.push_back(info.name);
     EXPECT_FALSE(info.description.empty());
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"clique", "ransac"}));
+  // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
+  std::vector<std::string> expected{"clique", "ransac"};
+  for (const auto& algo : CliqueAlgorithms::list()) expected.push_back("clique-" + algo.name);
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(names, expected);
+  EXPECT_TRUE(SolverRegistry::contains("clique-bbmc"));
+  EXPECT_TRUE(SolverRegistry::contains("clique-cliquer"));
   try {
     SolverRegistry::create("ransack");
     FAIL();
   } catch (const UnknownSolver& e) {
     EXPECT_NE(std::string(e.what()).find("ransack"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("clique, ransac"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("clique, clique-bbmc"), std::string::npos) << e.what();
   }
   EXPECT_THROW(SolverRegistry::add({"clique", "again", nullptr}), std::logic_error);
 }

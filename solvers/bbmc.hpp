@@ -1,0 +1,148 @@
+#pragma once
+// BBMC (San Segundo, Rodriguez-Losada & Jimenez 2011): bitset branch and bound for maximum clique
+// with a bit-parallel greedy colouring bound. Internal to solvers/; the graph's vertex order is the
+// initial order (index 0 is coloured first, so put high-degree / high-core vertices there).
+#include <algorithm>
+#include <vector>
+
+#include "core/bitgraph.hpp"
+#include "solvers/timer.hpp"
+
+namespace verifybench::detail {
+
+using Word = BitGraph::Word;
+inline constexpr int kBits = BitGraph::kWordBits;
+
+inline int lowest_bit(Word w) { return __builtin_ctzll(w); }
+
+/// Calls f(v) for every set bit of a bitset of `words` words, in increasing order.
+template <class F>
+void for_each_bit(const Word* bits, int words, F&& f) {
+  for (int w = 0; w < words; ++w) {
+    for (Word x = bits[w]; x; x &= x - 1) f(w * kBits + lowest_bit(x));
+  }
+}
+
+/// Limits shared by every search of one solve: a deadline and a node budget, checked every 64 nodes.
+struct SearchBudget {
+  SteadyClock::time_point deadline;
+  long long node_limit = 0;  ///< 0 = none
+  long long nodes = 0;
+  bool stopped = false;
+
+  bool spend() {  // one node; returns false once out of budget
+    if ((++nodes & 63) == 1 || node_limit > 0) {
+      if ((node_limit > 0 && nodes >= node_limit) || SteadyClock::now() >= deadline) stopped = true;
+    }
+    return !stopped;
+  }
+};
+
+/// BBMC: branch on vertices in reverse greedy-colour order; prune when |C| + colour <= |best|.
+/// The graph may be a whole graph or a compact subproblem; `incumbent` is the size to beat.
+class BranchAndBound {
+ public:
+  BranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget)
+      : g_(g), W_(g.words()), best_size_(incumbent), budget_(budget),
+        levels_(static_cast<std::size_t>(g.size()) + 2), order_(levels_.size()),
+        colour_(levels_.size()), U_(static_cast<std::size_t>(W_)), Q_(static_cast<std::size_t>(W_)) {}
+
+  /// Searches the whole graph; best() is empty unless a clique larger than the incumbent was found.
+  void run() {
+    auto& root = level(0);
+    for (int v = 0; v < g_.size(); ++v) root[v / kBits] |= Word{1} << (v % kBits);
+    expand(0);
+  }
+  const std::vector<int>& best() const { return best_; }
+
+  /// The subgraph induced by `vertices` (ascending ids), vertex k of the result being vertices[k].
+  /// `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
+  static BitGraph induced(const BitGraph& g, const std::vector<int>& vertices, std::vector<Word>& mask);
+
+ private:
+  std::vector<Word>& level(int depth) {
+    auto& l = levels_[static_cast<std::size_t>(depth)];
+    if (l.empty()) l.assign(static_cast<std::size_t>(W_), 0);
+    return l;
+  }
+
+  // Bit-parallel greedy colouring of P; stores only vertices of colour >= kmin, since the rest can
+  // never pass the bound (BBMC's colour-class pruning). Returns how many were stored.
+  int colour(const Word* P, int depth, int kmin) {
+    auto& ord = order_[static_cast<std::size_t>(depth)];
+    auto& col = colour_[static_cast<std::size_t>(depth)];
+    if (ord.empty()) {
+      ord.resize(static_cast<std::size_t>(g_.size()));
+      col.resize(static_cast<std::size_t>(g_.size()));
+    }
+    Word* U = U_.data();
+    Word* Q = Q_.data();
+    std::copy(P, P + W_, U);
+    int k = 0, count = 0, lo = 0;
+    for (;;) {
+      while (lo < W_ && U[lo] == 0) ++lo;
+      if (lo == W_) break;
+      ++k;
+      std::copy(U + lo, U + W_, Q + lo);
+      for (int w = lo; w < W_; ++w) {
+        while (Q[w]) {
+          const int b = lowest_bit(Q[w]);
+          const int v = w * kBits + b;
+          U[w] &= ~(Word{1} << b);
+          Q[w] &= ~(Word{1} << b);
+          const Word* N = g_.row(v);
+          for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
+          if (k >= kmin) {
+            ord[static_cast<std::size_t>(count)] = v;
+            col[static_cast<std::size_t>(count)] = k;
+            ++count;
+          }
+        }
+      }
+    }
+    return count;
+  }
+
+  void expand(int depth) {
+    if (!budget_.spend()) return;
+    Word* P = level(depth).data();
+    Word* next = level(depth + 1).data();
+    const int size = static_cast<int>(clique_.size());
+    const int count = colour(P, depth, std::max(1, best_size_ - size + 1));
+    const auto& ord = order_[static_cast<std::size_t>(depth)];
+    const auto& col = colour_[static_cast<std::size_t>(depth)];
+    for (int i = count - 1; i >= 0; --i) {
+      if (size + col[static_cast<std::size_t>(i)] <= best_size_) return;
+      const int v = ord[static_cast<std::size_t>(i)];
+      const Word* N = g_.row(v);
+      Word any = 0;
+      for (int w = 0; w < W_; ++w) any |= (next[w] = P[w] & N[w]);
+      clique_.push_back(v);
+      if (!any) {
+        if (size + 1 > best_size_) {
+          best_ = clique_;
+          best_size_ = size + 1;
+        }
+      } else {
+        expand(depth + 1);
+      }
+      clique_.pop_back();
+      if (budget_.stopped) return;
+      P[v / kBits] &= ~(Word{1} << (v % kBits));
+    }
+  }
+
+  const BitGraph& g_;
+  const int W_;
+  int best_size_;
+  SearchBudget& budget_;
+  std::vector<int> clique_, best_;
+  std::vector<std::vector<Word>> levels_;  // candidate set per depth
+  std::vector<std::vector<int>> order_, colour_;
+  std::vector<Word> U_, Q_;
+};
+
+/// The subgraph induced by `vertices` in any order, vertex k of the result being vertices[k].
+BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices);
+
+}  // namespace verifybench::detail

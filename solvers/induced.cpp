@@ -1,0 +1,114 @@
+// Induced subgraphs by parallel bit extraction: with the members in ascending order, row k of the
+// subgraph is the concatenation of pext(row(member k)[w], mask[w]) over the mask's words.
+#include <cstring>
+
+#include "solvers/bbmc.hpp"
+
+namespace verifybench::detail {
+
+namespace {
+
+/// Software pext: the bits of x at the positions set in m, packed to the bottom.
+inline Word soft_pext(Word x, Word m) {
+  Word out = 0;
+  for (Word bit = 1; m; m &= m - 1, bit <<= 1) {
+    if (x & m & (~m + 1)) out |= bit;
+  }
+  return out;
+}
+
+template <bool kHardware>
+inline Word pext(Word x, Word m);
+
+template <>
+inline Word pext<false>(Word x, Word m) {
+  return soft_pext(x, m);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+template <>
+__attribute__((target("bmi2"))) inline Word pext<true>(Word x, Word m) {
+  return __builtin_ia32_pext_di(x, m);
+}
+#endif
+
+struct MaskWord {
+  int word;    ///< word index in the big graph
+  int offset;  ///< members in earlier words (bit offset in the subgraph row)
+  int count;   ///< members in this word
+};
+
+template <bool kHardware>
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("bmi2,popcnt")))
+#endif
+void fill_rows(const BitGraph& g, const std::vector<int>& vertices, const std::vector<Word>& mask,
+               const std::vector<MaskWord>& words, BitGraph& sub) {
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    const Word* row = g.row(vertices[k]);
+    Word* out = sub.row(static_cast<int>(k));
+    // Offsets only grow: gather into a register and store each output word once.
+    Word acc = 0;
+    int at = 0;
+    for (const MaskWord& mw : words) {
+      const Word bits = pext<kHardware>(row[mw.word], mask[static_cast<std::size_t>(mw.word)]);
+      const int shift = mw.offset % kBits;
+      acc |= bits << shift;
+      if (shift + mw.count >= kBits) {
+        out[at++] = acc;
+        acc = shift == 0 ? 0 : bits >> (kBits - shift);
+      }
+    }
+    if (at < sub.words()) out[at] = acc;
+  }
+}
+
+bool has_bmi2() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool yes = __builtin_cpu_supports("bmi2");
+  return yes;
+#else
+  return false;
+#endif
+}
+
+}  // namespace
+
+BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vertices, std::vector<Word>& mask) {
+  std::vector<MaskWord> words;
+  for (int v : vertices) {
+    const int w = v / kBits;
+    if (mask[static_cast<std::size_t>(w)] == 0) words.push_back({w, 0, 0});
+    mask[static_cast<std::size_t>(w)] |= Word{1} << (v % kBits);
+  }
+  int offset = 0;
+  for (MaskWord& mw : words) {
+    mw.offset = offset;
+    mw.count = __builtin_popcountll(mask[static_cast<std::size_t>(mw.word)]);
+    offset += mw.count;
+  }
+  BitGraph sub(static_cast<int>(vertices.size()));
+  if (has_bmi2()) {
+    fill_rows<true>(g, vertices, mask, words, sub);
+  } else {
+    fill_rows<false>(g, vertices, mask, words, sub);
+  }
+  for (const MaskWord& mw : words) mask[static_cast<std::size_t>(mw.word)] = 0;
+  return sub;
+}
+
+BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
+  std::vector<int> index(static_cast<std::size_t>(g.size()), -1);
+  for (std::size_t k = 0; k < vertices.size(); ++k) index[static_cast<std::size_t>(vertices[k])] = static_cast<int>(k);
+  BitGraph sub(static_cast<int>(vertices.size()));
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    Word* out = sub.row(static_cast<int>(k));
+    for_each_bit(g.row(vertices[k]), g.words(), [&](int u) {
+      const int local = index[static_cast<std::size_t>(u)];
+      if (local >= 0) out[local / kBits] |= Word{1} << (local % kBits);
+    });
+  }
+  return sub;
+}
+
+}  // namespace verifybench::detail
