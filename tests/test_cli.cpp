@@ -87,6 +87,33 @@ TEST(Cli, SweepWritesAParsableReport) {
   fs::remove(out);
 }
 
+TEST(Cli, DimacsModeReportsOmegaAndRejectsBadInput) {
+  const fs::path dir = fs::temp_directory_path() / "vb_cli_dimacs";
+  fs::create_directories(dir);
+  // K4 on {1,2,3,4} plus a pendant vertex 5; MANIFEST.tsv gives the known omega.
+  std::ofstream(dir / "k4.clq") << "p edge 5 7\ne 1 2\ne 1 3\ne 1 4\ne 2 3\ne 2 4\ne 3 4\ne 4 5\n";
+  std::ofstream(dir / "MANIFEST.tsv") << "instance\tn\tm\tomega\nk4\t5\t7\t4\n";
+  std::ofstream(dir / "bad.clq") << "p edge 5 1\ne 1 9\n";
+  const fs::path out = dir / "r.json";
+  const CliRun ok = run("dimacs " + (dir / "k4.clq").string() + " --algorithms bbmc,cliquer,igraph --quiet --out " +
+                        out.string());
+  ASSERT_EQ(ok.code, 0) << ok.output;
+  std::ifstream in(out);
+  const auto doc = nlohmann::json::parse(in);
+  ASSERT_EQ(doc["results"].size(), 3u);
+  for (const auto& r : doc["results"]) {
+    EXPECT_EQ(r["omega"], 4) << r["algorithm"];
+    EXPECT_EQ(r["status"], "ok");
+    EXPECT_EQ(r["correct"], true);
+    EXPECT_EQ(r["clique"], (std::vector<int>{1, 2, 3, 4}));
+  }
+  expect_usage_error("dimacs " + (dir / "bad.clq").string() + " " + kOut, "bad.clq:2: vertex '9'");
+  expect_usage_error("dimacs " + (dir / "k4.clq").string() + " --algorithms nope " + kOut,
+                     "unknown clique algorithm 'nope'");
+  expect_usage_error("dimacs " + kOut, "no DIMACS file given");
+  fs::remove_all(dir);
+}
+
 TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
   const CliRun r = run("sweep --n 20 --outliers 0.5 --trials 1 --quiet --out /nonexistent/dir/r.json");
   EXPECT_NE(r.code, 0);
