@@ -67,18 +67,15 @@ class BranchAndBound {
   }
 
   // Bit-parallel greedy colouring of P; stores only vertices of colour >= kmin, since the rest can
-  // never pass the bound (BBMC's colour-class pruning). Returns how many were stored.
+  // never pass the bound (BBMC's colour-class pruning). Returns how many were stored; sets
+  // colours_ (classes used) and coloured_ (|P|).
   int colour(const Word* P, int depth, int kmin) {
     auto& ord = order_[static_cast<std::size_t>(depth)];
     auto& col = colour_[static_cast<std::size_t>(depth)];
-    if (ord.empty()) {
-      ord.resize(static_cast<std::size_t>(g_.size()));
-      col.resize(static_cast<std::size_t>(g_.size()));
-    }
     Word* U = U_.data();
     Word* Q = Q_.data();
     std::copy(P, P + W_, U);
-    int k = 0, count = 0, lo = 0;
+    int k = 0, count = 0, lo = 0, total = 0;
     for (;;) {
       while (lo < W_ && U[lo] == 0) ++lo;
       if (lo == W_) break;
@@ -92,7 +89,12 @@ class BranchAndBound {
           Q[w] &= ~(Word{1} << b);
           const Word* N = g_.row(v);
           for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
+          ++total;
           if (k >= kmin) {
+            if (static_cast<std::size_t>(count) == ord.size()) {  // grow on demand: deep levels hold few
+              ord.resize(std::max<std::size_t>(64, 2 * ord.size()));
+              col.resize(ord.size());
+            }
             ord[static_cast<std::size_t>(count)] = v;
             col[static_cast<std::size_t>(count)] = k;
             ++count;
@@ -100,6 +102,8 @@ class BranchAndBound {
         }
       }
     }
+    colours_ = k;
+    coloured_ = total;
     return count;
   }
 
@@ -109,6 +113,16 @@ class BranchAndBound {
     Word* next = level(depth + 1).data();
     const int size = static_cast<int>(clique_.size());
     const int count = colour(P, depth, std::max(1, best_size_ - size + 1));
+    if (colours_ == coloured_) {
+      // Every class is a singleton, so each vertex is adjacent to all before it: P is a clique, and
+      // C + P is the best of this subtree. Ends the long descent into a large planted clique.
+      if (size + coloured_ > best_size_) {
+        best_ = clique_;
+        for_each_bit(P, W_, [&](int v) { best_.push_back(v); });
+        best_size_ = size + coloured_;
+      }
+      return;
+    }
     const auto& ord = order_[static_cast<std::size_t>(depth)];
     const auto& col = colour_[static_cast<std::size_t>(depth)];
     for (int i = count - 1; i >= 0; --i) {
@@ -140,6 +154,7 @@ class BranchAndBound {
   std::vector<std::vector<Word>> levels_;  // candidate set per depth
   std::vector<std::vector<int>> order_, colour_;
   std::vector<Word> U_, Q_;
+  int colours_ = 0, coloured_ = 0;
 };
 
 /// The subgraph induced by `vertices` in any order, vertex k of the result being vertices[k].
