@@ -38,6 +38,7 @@ void add_solver_options(vb::Options& o) {
       .add("ransac-adaptive", "", "", "RANSAC: adaptive iteration count")
       .add("ransac-confidence", "P", "0.999", "RANSAC: confidence of the adaptive count")
       .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
+      .add("threads", "T", "1", "threads for graph construction (0 = all cores); results do not depend on it")
       .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
       .add("success-trans", "M", "0.3", "success: translation error under this [m]")
       .add("seed", "S", "1", "seed of every random draw (recorded in the report)")
@@ -56,6 +57,7 @@ vb::SolverParams solver_params(const vb::Options& o) {
   p.ransac_confidence = o.real("ransac-confidence", 1e-9, 1 - 1e-12);
   p.max_graph_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
   p.seed = o.seed("seed");
+  p.threads = static_cast<int>(o.integer("threads", 0, 1024));
   p.validate();
   return p;
 }
@@ -86,6 +88,7 @@ json params_json(const vb::SolverParams& p, const vb::SuccessCriteria& c) {
           {"ransac_adaptive", p.ransac_adaptive},
           {"ransac_confidence", p.ransac_confidence},
           {"max_graph_bytes", p.max_graph_bytes},
+          {"threads", p.threads},
           {"success_criteria",
            {{"max_rotation_error_deg", c.max_rotation_error_deg},
             {"max_translation_error", c.max_translation_error},

@@ -40,10 +40,13 @@ struct SearchBudget {
 
 /// BBMC: branch on vertices in reverse greedy-colour order; prune when |C| + colour <= |best|.
 /// The graph may be a whole graph or a compact subproblem; `incumbent` is the size to beat.
+/// With `recolour`, a vertex that would get a colour >= kmin is first re-numbered into a lower
+/// class when it has a single neighbour there that can move up to another low class (Tomita's
+/// Re-NUMBER in MCS; BBMCR of San Segundo et al. 2013): fewer vertices to branch on.
 class BranchAndBound {
  public:
-  BranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget)
-      : g_(g), W_(g.words()), best_size_(incumbent), budget_(budget),
+  BranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget, bool recolour = false)
+      : g_(g), W_(g.words()), best_size_(incumbent), budget_(budget), recolour_(recolour),
         levels_(static_cast<std::size_t>(g.size()) + 2), order_(levels_.size()),
         colour_(levels_.size()), U_(static_cast<std::size_t>(W_)), Q_(static_cast<std::size_t>(W_)) {}
 
@@ -76,6 +79,8 @@ class BranchAndBound {
     Word* Q = Q_.data();
     std::copy(P, P + W_, U);
     int k = 0, count = 0, lo = 0, total = 0;
+    const int low_classes = recolour_ ? kmin - 1 : 0;  // classes a vertex may be re-numbered into
+    if (low_classes > 0) classes_.assign(static_cast<std::size_t>(low_classes) * W_, 0);
     for (;;) {
       while (lo < W_ && U[lo] == 0) ++lo;
       if (lo == W_) break;
@@ -88,8 +93,12 @@ class BranchAndBound {
           U[w] &= ~(Word{1} << b);
           Q[w] &= ~(Word{1} << b);
           const Word* N = g_.row(v);
-          for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
           ++total;
+          if (k >= kmin && low_classes > 1 && renumber(v, low_classes)) continue;
+          for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
+          if (k <= low_classes) {
+            classes_[static_cast<std::size_t>(k - 1) * W_ + static_cast<std::size_t>(w)] |= Word{1} << b;
+          }
           if (k >= kmin) {
             if (static_cast<std::size_t>(count) == ord.size()) {  // grow on demand: deep levels hold few
               ord.resize(std::max<std::size_t>(64, 2 * ord.size()));
@@ -105,6 +114,35 @@ class BranchAndBound {
     colours_ = k;
     coloured_ = total;
     return count;
+  }
+
+  // Re-NUMBER: move v into a low class k1 where it has exactly one neighbour u, moving u into a
+  // later low class k2 where u has none. Both stay proper colour classes below kmin.
+  bool renumber(int v, int low_classes) {
+    const Word* N = g_.row(v);
+    for (int k1 = 0; k1 < low_classes - 1; ++k1) {
+      Word* C1 = classes_.data() + static_cast<std::size_t>(k1) * W_;
+      int hits = 0, u = -1;
+      for (int x = 0; x < W_ && hits < 2; ++x) {
+        const Word both = C1[x] & N[x];
+        if (!both) continue;
+        hits += (both & (both - 1)) ? 2 : 1;
+        u = x * kBits + lowest_bit(both);
+      }
+      if (hits != 1) continue;
+      const Word* Nu = g_.row(u);
+      for (int k2 = k1 + 1; k2 < low_classes; ++k2) {
+        Word* C2 = classes_.data() + static_cast<std::size_t>(k2) * W_;
+        bool free = true;
+        for (int x = 0; x < W_ && free; ++x) free = (C2[x] & Nu[x]) == 0;
+        if (!free) continue;
+        C1[u / kBits] &= ~(Word{1} << (u % kBits));
+        C2[u / kBits] |= Word{1} << (u % kBits);
+        C1[v / kBits] |= Word{1} << (v % kBits);
+        return true;
+      }
+    }
+    return false;
   }
 
   void expand(int depth) {
@@ -150,10 +188,12 @@ class BranchAndBound {
   const int W_;
   int best_size_;
   SearchBudget& budget_;
+  bool recolour_;
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;  // candidate set per depth
   std::vector<std::vector<int>> order_, colour_;
   std::vector<Word> U_, Q_;
+  std::vector<Word> classes_;  // the low colour classes, for re-numbering
   int colours_ = 0, coloured_ = 0;
 };
 

@@ -96,9 +96,9 @@ int max_core(const CoreDecomposition& cd) {
 /// BBMC on the subgraph induced by `vertices` (in that order, which is the initial colouring
 /// order); returns a clique larger than `incumbent` in original ids, or an empty vector.
 std::vector<int> search_ordered(const BitGraph& g, const std::vector<int>& vertices, int incumbent,
-                                SearchBudget& budget) {
+                                SearchBudget& budget, bool recolour = false) {
   const BitGraph sub = detail::permuted(g, vertices);
-  BranchAndBound bb(sub, incumbent, budget);
+  BranchAndBound bb(sub, incumbent, budget, recolour);
   bb.run();
   std::vector<int> found;
   for (int k : bb.best()) found.push_back(vertices[static_cast<std::size_t>(k)]);
@@ -116,12 +116,13 @@ CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudge
   return r;
 }
 
-// bbmc: the whole graph in min-width order (highest core first), no pre-pruning.
+// bbmc / bbmcr: the whole graph in min-width order (highest core first), no pre-pruning.
+template <bool kRecolour>
 CliqueSearchResult run_bbmc(const BitGraph& g, const CliqueSearchParams& p) {
   SearchBudget budget = make_budget(p);
   const CoreDecomposition cd = core_decomposition(g);
   const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
-  return finish(search_ordered(g, order, 0, budget), true, budget, max_core(cd) + 1);
+  return finish(search_ordered(g, order, 0, budget, kRecolour), true, budget, max_core(cd) + 1);
 }
 
 // bbmc-kcore: greedy lower bound, drop vertices whose core number cannot beat it, BBMC on the rest.
@@ -223,7 +224,9 @@ void register_clique_algorithms() {
   static std::once_flag once;
   std::call_once(once, [] {
     CliqueAlgorithms::add({"bbmc", "BBMC: bitset branch and bound, greedy colouring bound, min-width order",
-                           true, run_bbmc});
+                           true, run_bbmc<false>});
+    CliqueAlgorithms::add({"bbmcr", "BBMCR: BBMC with re-colouring (MCS Re-NUMBER) of branching candidates",
+                           true, run_bbmc<true>});
     CliqueAlgorithms::add({"bbmc-kcore", "BBMC after a greedy lower bound and k-core pruning (TEASER++/PMC-style pre-pruning)",
                            true, run_bbmc_kcore});
     CliqueAlgorithms::add({"bbmc-dec", "BBMC on each vertex's later neighbours in degeneracy order (PMC-style decomposition)",
