@@ -8,12 +8,14 @@ namespace verifybench {
 
 void register_clique_solvers();
 void register_ransac_solver();
+void register_mac_solver();
 
 void register_builtin_solvers() {
   static std::once_flag once;
   std::call_once(once, [] {
     register_clique_solvers();
     register_ransac_solver();
+    register_mac_solver();
   });
 }
 
@@ -40,6 +42,8 @@ void SolverParams::validate() const {
   require(min_inliers >= 0, "min_inliers", min_inliers, "an integer >= 0 (0 = paper default)");
   require(time_limit_s > 0.0, "time_limit_s", time_limit_s, "a value > 0");
   require(ransac_iterations >= 1, "ransac_iterations", ransac_iterations, "an integer >= 1");
+  require(mac_max_cliques >= 1, "mac_max_cliques", mac_max_cliques, "an integer >= 1");
+  require(mac_min_clique >= 2, "mac_min_clique", mac_min_clique, "an integer >= 2");
   require(threads >= 0, "threads", threads, "an integer >= 0 (0 = all cores)");
   require(ransac_confidence > 0.0 && ransac_confidence < 1.0, "ransac_confidence",
           ransac_confidence, "a value in (0, 1)");

@@ -52,6 +52,19 @@ void register_clique_algorithms();
 inline constexpr const char* kDefaultCliqueAlgorithm = "bbmc";
 CliqueSearchResult max_clique(const BitGraph& g, const CliqueSearchParams& params = {});
 
+struct MaximalCliqueParams {
+  int min_size = 1;                                                ///< report cliques this large or larger
+  long long max_cliques = 0;                                       ///< stop after this many; 0 = all
+  double time_limit_s = std::numeric_limits<double>::infinity();  ///< wall-clock limit
+};
+
+/// Calls report(clique) once for every maximal clique of at least min_size vertices (original ids,
+/// its first vertex in degeneracy order first). Returns false when a limit cut the enumeration short.
+/// `nodes`, when given, receives the Bron-Kerbosch nodes expanded.
+bool for_each_maximal_clique(const BitGraph& g, const MaximalCliqueParams& params,
+                             const std::function<void(const std::vector<int>&)>& report,
+                             long long* nodes = nullptr);
+
 /// Core numbers (Batagelj & Zaversnik 2003) and the smallest-last removal order.
 struct CoreDecomposition {
   std::vector<int> core;   ///< core number per vertex

@@ -20,6 +20,8 @@ struct SolverParams {
   double ransac_confidence = 0.999;  ///< RANSAC: p of the adaptive count, in (0, 1)
   std::size_t max_graph_bytes = std::size_t{4} << 30;  ///< refuse larger correspondence graphs
   int threads = 1;  ///< worker threads for graph construction (0 = all cores); results do not depend on it
+  long long mac_max_cliques = 1000000;  ///< mac: stop enumerating maximal cliques after this many
+  int mac_min_clique = 3;               ///< mac: smallest maximal clique that makes a hypothesis
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;

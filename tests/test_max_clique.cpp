@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <set>
 
 #include "solvers/max_clique.hpp"
 #include "test_util.hpp"
@@ -156,6 +157,58 @@ TEST(MaxClique, GreedyIsAValidCliqueNoLargerThanOptimal) {
   }
   EXPECT_FALSE(CliqueAlgorithms::get("greedy").exact);
   EXPECT_THROW(CliqueAlgorithms::get("nope"), std::invalid_argument);
+}
+
+std::set<std::vector<int>> brute_force_maximal_cliques(const BitGraph& g, int min_size) {
+  std::set<std::vector<int>> out;
+  const int n = g.size();
+  for (std::uint32_t s = 1; s < (1u << n); ++s) {
+    std::vector<int> c;
+    for (int v = 0; v < n; ++v)
+      if (s >> v & 1) c.push_back(v);
+    if (static_cast<int>(c.size()) < min_size || !g.is_clique(c)) continue;
+    bool maximal = true;
+    for (int u = 0; u < n && maximal; ++u) {
+      if (s >> u & 1) continue;
+      bool all = true;
+      for (int v : c) all = all && g.adjacent(u, v);
+      maximal = !all;
+    }
+    if (maximal) out.insert(c);
+  }
+  return out;
+}
+
+TEST(MaximalCliques, MatchBruteForceEnumeration) {
+  std::mt19937_64 rng(31);
+  for (int rep = 0; rep < 120; ++rep) {
+    const int n = 1 + rep % 14;
+    const int min_size = 1 + rep % 4;
+    const BitGraph g = test::random_graph(n, 0.2 + 0.6 * (rep % 7) / 6.0, rng);
+    std::set<std::vector<int>> found;
+    int reports = 0;
+    MaximalCliqueParams p;
+    p.min_size = min_size;
+    const bool complete = for_each_maximal_clique(g, p, [&](const std::vector<int>& c) {
+      std::vector<int> sorted = c;
+      std::sort(sorted.begin(), sorted.end());
+      found.insert(sorted);
+      ++reports;
+    });
+    EXPECT_TRUE(complete);
+    EXPECT_EQ(reports, static_cast<int>(found.size())) << "a clique was reported twice";
+    ASSERT_EQ(found, brute_force_maximal_cliques(g, min_size)) << "n=" << n << " rep=" << rep;
+  }
+}
+
+TEST(MaximalCliques, CapStopsTheEnumeration) {
+  std::mt19937_64 rng(37);
+  const BitGraph g = test::random_graph(60, 0.5, rng);
+  MaximalCliqueParams p;
+  p.max_cliques = 10;
+  int reports = 0;
+  EXPECT_FALSE(for_each_maximal_clique(g, p, [&](const std::vector<int>&) { ++reports; }));
+  EXPECT_EQ(reports, 10);
 }
 
 TEST(CoreDecomposition, MatchesNaivePeeling) {

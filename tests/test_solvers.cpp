@@ -24,7 +24,7 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     EXPECT_FALSE(info.description.empty());
   }
   // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
-  std::vector<std::string> expected{"clique", "ransac"};
+  std::vector<std::string> expected{"clique", "mac", "ransac"};
   for (const auto& algo : CliqueAlgorithms::list()) expected.push_back("clique-" + algo.name);
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(names, expected);
@@ -76,7 +76,7 @@ TEST_P(Recovers, DrawnMotionAtHalfOutliers) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSolvers, Recovers,
-                         ::testing::Combine(::testing::Values("clique", "ransac"), ::testing::Values(2, 3)),
+                         ::testing::Combine(::testing::Values("clique", "ransac", "mac"), ::testing::Values(2, 3)),
                          [](const auto& info) {
                            return std::get<0>(info.param) + "_" + std::to_string(std::get<1>(info.param)) + "D";
                          });
@@ -116,7 +116,7 @@ TEST_F(Registered, TooFewInliersAreRejected) {
   p.n = 100;
   p.outlier_ratio = 0.97;  // 3 inliers, under the 5 that 3D acceptance needs
   const auto set = make_synthetic<3>(p);
-  for (const char* name : {"clique", "ransac"}) {
+  for (const char* name : {"clique", "ransac", "mac"}) {
     const auto r = SolverRegistry::create(name)->solve(set.corr, SolverParams{});
     EXPECT_FALSE(r.accepted) << name;
     EXPECT_EQ(r.status, Status::rejected) << name;
@@ -128,7 +128,7 @@ TEST_F(Registered, BadInputBecomesAnErrorStatusNotACrash) {
   c.source = Eigen::Matrix3Xd::Random(3, 10);
   c.target = c.source;
   c.target(1, 4) = std::numeric_limits<double>::quiet_NaN();
-  for (const char* name : {"clique", "ransac"}) {
+  for (const char* name : {"clique", "ransac", "mac"}) {
     const auto solver = SolverRegistry::create(name);
     auto r = solver->solve(c, SolverParams{});
     EXPECT_EQ(r.status, Status::error);
