@@ -39,6 +39,8 @@ void add_solver_options(vb::Options& o) {
       .add("ransac-confidence", "P", "0.999", "RANSAC: confidence of the adaptive count")
       .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
       .add("threads", "T", "1", "threads for graph construction (0 = all cores); results do not depend on it")
+      .add("mac-max-cliques", "K", "1000000", "mac: stop enumerating maximal cliques after K")
+      .add("mac-min-clique", "K", "3", "mac: smallest maximal clique that makes a hypothesis")
       .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
       .add("success-trans", "M", "0.3", "success: translation error under this [m]")
       .add("seed", "S", "1", "seed of every random draw (recorded in the report)")
@@ -58,6 +60,8 @@ vb::SolverParams solver_params(const vb::Options& o) {
   p.max_graph_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
   p.seed = o.seed("seed");
   p.threads = static_cast<int>(o.integer("threads", 0, 1024));
+  p.mac_max_cliques = o.integer("mac-max-cliques", 1, 1LL << 62);
+  p.mac_min_clique = static_cast<int>(o.integer("mac-min-clique", 2, 1 << 30));
   p.validate();
   return p;
 }
@@ -89,6 +93,8 @@ json params_json(const vb::SolverParams& p, const vb::SuccessCriteria& c) {
           {"ransac_confidence", p.ransac_confidence},
           {"max_graph_bytes", p.max_graph_bytes},
           {"threads", p.threads},
+          {"mac_max_cliques", p.mac_max_cliques},
+          {"mac_min_clique", p.mac_min_clique},
           {"success_criteria",
            {{"max_rotation_error_deg", c.max_rotation_error_deg},
             {"max_translation_error", c.max_translation_error},

@@ -56,7 +56,7 @@ void register_clique_solvers() {
                            ") on the pairwise-distance graph of Eq. (1), then least-squares fit",
                        [run = default_algorithm.run] { return std::make_unique<CliqueSolver>(run); }});
   for (const CliqueAlgorithmInfo& info : CliqueAlgorithms::list()) {
-    SolverRegistry::add({"clique-" + info.name, "clique solver with " + info.description,
+    SolverRegistry::add({"clique-" + info.name, "Eq. (1) graph, then " + info.description + ", then fit",
                          [run = info.run] { return std::make_unique<CliqueSolver>(run); }});
   }
 }
