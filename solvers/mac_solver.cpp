@@ -8,6 +8,7 @@
 
 #include "core/compatibility_graph.hpp"
 #include "core/rigid_fit.hpp"
+#include "solvers/consensus.hpp"
 #include "solvers/max_clique.hpp"
 #include "solvers/registry.hpp"
 #include "solvers/timer.hpp"
@@ -15,25 +16,6 @@
 namespace verifybench {
 
 namespace {
-
-template <int Dim>
-std::size_t consensus_count(const Correspondences<Dim>& corr, const Rigid<Dim>& T, double threshold) {
-  const double t2 = threshold * threshold;
-  std::size_t count = 0;
-  for (Eigen::Index i = 0; i < corr.size(); ++i) {
-    count += (T * corr.source.col(i) - corr.target.col(i)).squaredNorm() < t2;
-  }
-  return count;
-}
-
-template <int Dim>
-std::vector<int> consensus_set(const Correspondences<Dim>& corr, const Rigid<Dim>& T, double threshold) {
-  std::vector<int> inliers;
-  for (Eigen::Index i = 0; i < corr.size(); ++i) {
-    if ((T * corr.source.col(i) - corr.target.col(i)).norm() < threshold) inliers.push_back(static_cast<int>(i));
-  }
-  return inliers;
-}
 
 class MacSolver : public SolverBase<MacSolver> {
  public:
@@ -87,17 +69,7 @@ class MacSolver : public SolverBase<MacSolver> {
     result.times.search_ms = search_clock.ms();
 
     StopWatch fit_clock;
-    if (best_count > 0) {
-      result.inliers = consensus_set(corr, best_T, params.inlier_threshold);
-      result.T_target_source = best_T;
-      if (auto refit = fit_rigid(corr, result.inliers)) {
-        std::vector<int> refined = consensus_set(corr, *refit, params.inlier_threshold);
-        if (refined.size() >= result.inliers.size()) {
-          result.inliers = std::move(refined);
-          result.T_target_source = *refit;
-        }
-      }
-    }
+    if (best_count > 0) take_consensus_with_refit(corr, best_T, params.inlier_threshold, result);
     result.times.fit_ms = fit_clock.ms();
     decide(result, params, complete);
     return result;

@@ -7,30 +7,13 @@
 #include <random>
 
 #include "core/rigid_fit.hpp"
+#include "solvers/consensus.hpp"
 #include "solvers/registry.hpp"
 #include "solvers/timer.hpp"
 
 namespace verifybench {
 
 namespace {
-
-/// Calls f(i) for each correspondence that T maps to within `threshold` of its target.
-template <int Dim, class F>
-void for_each_inlier(const Correspondences<Dim>& corr, const Rigid<Dim>& T, double threshold, F&& f) {
-  const double t2 = threshold * threshold;
-  const Eigen::Matrix<double, Dim, Dim> R = T.linear();
-  const Eigen::Matrix<double, Dim, 1> t = T.translation();
-  for (Eigen::Index i = 0; i < corr.size(); ++i) {
-    if ((R * corr.source.col(i) + t - corr.target.col(i)).squaredNorm() < t2) f(static_cast<int>(i));
-  }
-}
-
-template <int Dim>
-std::vector<int> consensus(const Correspondences<Dim>& corr, const Rigid<Dim>& T, double threshold) {
-  std::vector<int> inliers;
-  for_each_inlier(corr, T, threshold, [&](int i) { inliers.push_back(i); });
-  return inliers;
-}
 
 /// Samples whose points (nearly) coincide, or in 3D are (nearly) collinear, fix no motion.
 template <int Dim>
@@ -86,8 +69,7 @@ class RansacSolver : public SolverBase<RansacSolver> {
       std::copy(pool.begin(), pool.begin() + Dim, sample.begin());
       const auto T = fit_rigid(corr, sample);
       if (!T) continue;
-      std::size_t count = 0;
-      for_each_inlier(corr, *T, params.inlier_threshold, [&](int) { ++count; });
+      const std::size_t count = consensus_count(corr, *T, params.inlier_threshold);
       if (count <= best_count) continue;
       best_count = count;
       best_T = *T;
@@ -101,18 +83,7 @@ class RansacSolver : public SolverBase<RansacSolver> {
     result.times.search_ms = search_clock.ms();
 
     StopWatch fit_clock;
-    const std::vector<int> best =
-        best_count > 0 ? consensus(corr, best_T, params.inlier_threshold) : std::vector<int>{};
-    result.inliers = best;
-    result.T_target_source = best_T;
-    if (auto refit = fit_rigid(corr, best)) {
-      // Least-squares refit on the consensus set; keep it when it explains at least as many matches.
-      std::vector<int> refined = consensus(corr, *refit, params.inlier_threshold);
-      if (refined.size() >= best.size()) {
-        result.inliers = std::move(refined);
-        result.T_target_source = *refit;
-      }
-    }
+    if (best_count > 0) take_consensus_with_refit(corr, best_T, params.inlier_threshold, result);
     result.times.fit_ms = fit_clock.ms();
     decide(result, params, finished);
     return result;
