@@ -38,7 +38,7 @@ void add_solver_options(vb::Options& o) {
       .add("ransac-adaptive", "", "", "RANSAC: adaptive iteration count")
       .add("ransac-confidence", "P", "0.999", "RANSAC: confidence of the adaptive count")
       .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
-      .add("threads", "T", "1", "threads for graph construction (0 = all cores); results do not depend on it")
+      .add("threads", "T", "1", "threads for graph construction and clique-bbmc-dec (0 = all cores); results do not depend on it")
       .add("mac-max-cliques", "K", "1000000", "mac: stop enumerating maximal cliques after K")
       .add("mac-min-clique", "K", "3", "mac: smallest maximal clique that makes a hypothesis")
       .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
@@ -143,6 +143,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   o.allow_positional("FILE.clq")
       .add("algorithms", "A,B", vb::kDefaultCliqueAlgorithm, "clique algorithms (see `verifybench list`)")
       .add("time-limit", "S", "60", "per-search time limit [s]")
+      .add("threads", "T", "1", "threads of the parallel algorithms (bbmc-dec; 0 = all cores)")
       .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
       .add("out", "FILE.json", "", "report path (required; written atomically)")
       .add("quiet", "", "", "no progress lines");
@@ -158,6 +159,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   for (const auto& n : names) vb::CliqueAlgorithms::get(n);  // throws with the known names
   vb::CliqueSearchParams params;
   params.time_limit_s = o.real("time-limit", 1e-6, 1e9);
+  params.threads = static_cast<int>(o.integer("threads", 0, 1024));
   const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
   const std::string out = o.required("out");
 
@@ -205,7 +207,8 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
       rows.push_back(std::move(r));
     }
   }
-  json parameters = {{"mode", "dimacs"}, {"algorithms", names}, {"time_limit_s", params.time_limit_s}};
+  json parameters = {{"mode", "dimacs"}, {"algorithms", names}, {"time_limit_s", params.time_limit_s},
+                     {"threads", params.threads}};
   vb::write_json_atomic(out, vb::make_report(vb::make_context(argv, 0), parameters, rows));
   std::cout << out << "\n";
   for (const auto& r : rows) {

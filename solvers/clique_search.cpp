@@ -1,8 +1,11 @@
 // Core decomposition, the greedy lower bound and the exact clique algorithms of max_clique.hpp.
 #include <algorithm>
+#include <atomic>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "solvers/bbmc.hpp"
 #include "solvers/max_clique.hpp"
@@ -146,40 +149,114 @@ CliqueSearchResult run_bbmc_kcore(const BitGraph& g, const CliqueSearchParams& p
 // bbmc-dec: every maximum clique has a first vertex v in degeneracy order, and its other vertices
 // are later neighbours of v: at most degeneracy of them. Solving each such neighbourhood as a small
 // compact BBMC problem, highest core first, is what PMC does (with a weaker bound inside).
-CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) {
-  SearchBudget budget = make_budget(p);
-  const int n = g.size();
-  const CoreDecomposition cd = core_decomposition(g);
-  const int upper = max_core(cd) + 1;
-  std::vector<int> best = greedy_clique(g, cd);
-  // Relabel in min-width order (0 = removed last): v's later neighbours are then the smaller ids.
-  const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
-  const BitGraph h = detail::permuted(g, order);
-  std::vector<Word> mask(static_cast<std::size_t>(h.words()), 0);
-  std::vector<int> members;
-  for (int v = 0; v < n && static_cast<int>(best.size()) < upper; ++v) {
-    const int size = static_cast<int>(best.size());
-    if (cd.core[static_cast<std::size_t>(order[static_cast<std::size_t>(v)])] + 1 <= size) continue;
+class Decomposition {
+ public:
+  explicit Decomposition(const BitGraph& g)
+      : cd_(core_decomposition(g)), order_(cd_.order.rbegin(), cd_.order.rend()),
+        // Relabel in min-width order (0 = removed last): v's later neighbours are the smaller ids.
+        h_(detail::permuted(g, order_)) {}
+
+  const CoreDecomposition& cores() const { return cd_; }
+  int size() const { return h_.size(); }
+
+  /// A clique through v larger than `size` whose other vertices are v's later neighbours, in
+  /// original ids (the maximum such clique, the first BBMC meets), or empty when there is none.
+  std::vector<int> solve(int v, int size, SearchBudget& budget, std::vector<Word>& mask,
+                         std::vector<int>& members) const {
+    if (core(v) + 1 <= size) return {};  // v's later degree is at most its core number
     members.clear();
-    const Word* row = h.row(v);
+    const Word* row = h_.row(v);
     for (int w = 0; w <= v / kBits; ++w) {
       for (Word x = row[w]; x; x &= x - 1) {
         const int u = w * kBits + detail::lowest_bit(x);
         if (u >= v) break;
-        if (cd.core[static_cast<std::size_t>(order[static_cast<std::size_t>(u)])] >= size) members.push_back(u);
+        if (core(u) >= size) members.push_back(u);
       }
     }
-    if (static_cast<int>(members.size()) + 1 <= size) continue;
-    const BitGraph sub = BranchAndBound::induced(h, members, mask);
+    if (static_cast<int>(members.size()) + 1 <= size) return {};
+    const BitGraph sub = BranchAndBound::induced(h_, members, mask);
     BranchAndBound bb(sub, size - 1, budget);
     bb.run();
-    if (!bb.best().empty()) {
-      best.assign(1, order[static_cast<std::size_t>(v)]);
-      for (int k : bb.best()) best.push_back(order[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
-    }
-    if (budget.stopped) break;
+    if (bb.best().empty()) return {};
+    std::vector<int> clique{order_[static_cast<std::size_t>(v)]};
+    for (int k : bb.best()) clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
+    return clique;
   }
-  return finish(std::move(best), true, budget, upper);
+
+ private:
+  int core(int relabelled) const {
+    return cd_.core[static_cast<std::size_t>(order_[static_cast<std::size_t>(relabelled)])];
+  }
+  CoreDecomposition cd_;
+  std::vector<int> order_;
+  BitGraph h_;
+};
+
+// Parallel over vertices with a shared incumbent size, then a canonical answer so that the clique
+// does not depend on the thread count: the first vertex (in min-width order) through which a
+// maximum clique runs, and the first maximum clique BBMC meets there with incumbent omega - 1.
+// Phase 1 records, per vertex, the size it proved no larger clique through it exceeds, so the
+// canonical pass re-solves only vertices that phase 1 could not rule out (with one thread: one).
+CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) {
+  const Decomposition dec(g);
+  const int n = dec.size();
+  const int upper = max_core(dec.cores()) + 1;
+  std::vector<int> best = greedy_clique(g, dec.cores());
+  const int threads = std::max(1, p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency()));
+
+  std::atomic<int> next{0}, best_size{static_cast<int>(best.size())};
+  std::atomic<bool> stop{false};
+  std::mutex lock;
+  int first = n;  // smallest vertex through which phase 1 met a clique of the current best size
+  std::vector<int> proven(static_cast<std::size_t>(n), std::numeric_limits<int>::max());
+  std::vector<SearchBudget> budgets(static_cast<std::size_t>(threads), make_budget(p));
+  auto worker = [&](SearchBudget& budget) {
+    std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
+    std::vector<int> members;
+    for (int v; !stop && (v = next++) < n && best_size.load() < upper;) {
+      const int size = best_size.load();
+      std::vector<int> found = dec.solve(v, size, budget, mask, members);
+      if (budget.stopped) {
+        stop = true;
+        return;
+      }
+      proven[static_cast<std::size_t>(v)] = found.empty() ? size : static_cast<int>(found.size());
+      if (found.empty()) continue;
+      std::lock_guard<std::mutex> guard(lock);
+      if (found.size() > best.size() || (found.size() == best.size() && v < first)) {
+        first = v;
+        best = std::move(found);
+        best_size = static_cast<int>(best.size());
+      }
+    }
+  };
+  if (threads == 1) {
+    worker(budgets[0]);
+  } else {
+    std::vector<std::thread> pool;
+    for (auto& b : budgets) pool.emplace_back(worker, std::ref(b));
+    for (auto& t : pool) t.join();
+  }
+  SearchBudget total = budgets[0];
+  for (std::size_t t = 1; t < budgets.size(); ++t) total.nodes += budgets[t].nodes;
+  total.stopped = stop;
+  if (!stop && first < n) {
+    const int omega = static_cast<int>(best.size());
+    std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
+    std::vector<int> members;
+    SearchBudget canonical = make_budget(p);
+    for (int v = 0; v <= first; ++v) {
+      if (proven[static_cast<std::size_t>(v)] < omega) continue;  // no omega-clique through v
+      std::vector<int> found = dec.solve(v, omega - 1, canonical, mask, members);
+      if (!found.empty()) {
+        best = std::move(found);
+        break;
+      }
+    }
+    total.nodes += canonical.nodes;
+    total.stopped = canonical.stopped;
+  }
+  return finish(std::move(best), true, total, upper);
 }
 
 CliqueSearchResult run_greedy(const BitGraph& g, const CliqueSearchParams& p) {

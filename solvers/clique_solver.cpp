@@ -29,6 +29,7 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
     StopWatch search_clock;
     CliqueSearchParams search;
     search.time_limit_s = params.time_limit_s - total.ms() / 1000.0;
+    search.threads = params.threads;
     const CliqueSearchResult clique = algorithm_(graph, search);
     result.times.search_ms = search_clock.ms();
     result.counters.branch_nodes = clique.nodes;

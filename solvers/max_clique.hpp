@@ -5,7 +5,8 @@
 //               min-width initial order; exact
 //   bbmc-kcore  bbmc after a greedy lower bound and k-core pruning (as PMC does inside TEASER++)
 //   bbmc-dec    PMC-style decomposition: for each vertex in degeneracy order, BBMC on its later
-//               neighbours (a compact subgraph of at most degeneracy vertices); exact
+//               neighbours (a compact subgraph of at most degeneracy vertices); exact; parallel
+//               with the same clique for any thread count
 //   greedy      the greedy clique alone: no optimality proof (to show what exactness buys)
 #include <functional>
 #include <limits>
@@ -18,7 +19,8 @@ namespace verifybench {
 
 struct CliqueSearchParams {
   double time_limit_s = std::numeric_limits<double>::infinity();  ///< wall-clock limit
-  long long node_limit = 0;  ///< branch nodes before giving up; 0 = no limit
+  long long node_limit = 0;  ///< branch nodes before giving up; 0 = no limit (per thread)
+  int threads = 1;           ///< bbmc-dec: worker threads (0 = all cores); the clique is the same for any count
 };
 
 struct CliqueSearchResult {

@@ -128,6 +128,27 @@ TEST(MaxClique, LargePlantedCliqueIsProvedOptimal) {
   }
 }
 
+TEST(MaxClique, DecompositionGivesTheSameCliqueForAnyThreadCount) {
+  // Random graphs have many maximum cliques; the parallel search must still return the same one.
+  register_clique_algorithms();
+  std::mt19937_64 rng(41);
+  for (int rep = 0; rep < 12; ++rep) {
+    const BitGraph g = test::random_graph(200 + 10 * rep, 0.4 + 0.05 * (rep % 3), rng);
+    CliqueSearchParams p;
+    p.threads = 1;
+    const auto one = CliqueAlgorithms::get("bbmc-dec").run(g, p);
+    ASSERT_TRUE(one.optimal);
+    ASSERT_TRUE(g.is_clique(one.clique));
+    EXPECT_EQ(one.clique.size(), CliqueAlgorithms::get("bbmc").run(g, {}).clique.size());
+    for (int threads : {2, 3, 8}) {
+      p.threads = threads;
+      const auto many = CliqueAlgorithms::get("bbmc-dec").run(g, p);
+      ASSERT_TRUE(many.optimal);
+      ASSERT_EQ(many.clique, one.clique) << "rep " << rep << " threads " << threads;
+    }
+  }
+}
+
 TEST(MaxClique, NodeLimitReturnsBestSoFarWithStatus) {
   std::mt19937_64 rng(3);
   const BitGraph g = test::random_graph(200, 0.9, rng);  // far too hard for 50 nodes
