@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Robustness curves from a verifybench sweep report.
 
-usage: plot_report.py REPORT.json [--out-dir DIR]
+usage: plot_report.py REPORT.json [REPORT.json ...] [--out-dir DIR] [--name STEM]
 
 Writes DIR/<stem>_success.png (success rate vs outlier ratio) and DIR/<stem>_time.png (median
 time vs outlier ratio, log scale, with the p90 as a dashed line), one panel per dimension and one
-curve per solver. Runs on Debian's /usr/bin/python3 with python3-matplotlib.
+curve per solver and n. Several reports (e.g. sweeps at different n) are drawn together; the stem
+is the first report's unless --name gives one. Runs on Debian's /usr/bin/python3 with python3-matplotlib.
 """
 import argparse
 import json
@@ -61,12 +62,13 @@ def title(doc, dim):
     return f"{dim}D, noise {sweep.get('noise')}, eps {eps}, {sweep.get('trials')} trials/point"
 
 
+
 def plot(doc, points, out_dir, stem):
     by_dim = curves(points)
     dims = sorted(by_dim)
     paths = []
     for kind in ("success", "time"):
-        fig, axes = plt.subplots(1, len(dims), figsize=(6 * len(dims), 4.5), squeeze=False)
+        fig, axes = plt.subplots(1, len(dims), figsize=(7.5 * len(dims), 4.8), squeeze=False)
         for ax, dim in zip(axes[0], dims):
             for (solver, n), series in sorted(by_dim[dim].items()):
                 x = [r for r, _ in series]
@@ -74,20 +76,19 @@ def plot(doc, points, out_dir, stem):
                 if kind == "success":
                     ax.plot(x, [a["success_rate"] for _, a in series], marker="o", label=label)
                 else:
-                    line, = ax.plot(x, [a["median_time_ms"] for _, a in series], marker="o",
-                                    label=f"{label} median")
+                    line, = ax.plot(x, [a["median_time_ms"] for _, a in series], marker="o", label=label)
                     ax.plot(x, [a["p90_time_ms"] for _, a in series], linestyle="--",
-                            color=line.get_color(), alpha=0.6, label=f"{label} p90")
+                            color=line.get_color(), alpha=0.6)
             ax.set_xlabel("outlier ratio")
             if kind == "success":
                 ax.set_ylabel("success rate")
                 ax.set_ylim(-0.03, 1.03)
             else:
-                ax.set_ylabel("time per solve [ms]")
+                ax.set_ylabel("time per solve [ms] (solid: median, dashed: p90)")
                 ax.set_yscale("log")
             ax.set_title(title(doc, dim))
             ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=8)
+            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
         fig.tight_layout()
         path = os.path.join(out_dir, f"{stem}_{kind}.png")
         tmp = path + ".tmp.png"
@@ -100,14 +101,17 @@ def plot(doc, points, out_dir, stem):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("report")
-    parser.add_argument("--out-dir", default=None, help="default: the report's folder")
+    parser.add_argument("reports", nargs="+")
+    parser.add_argument("--out-dir", default=None, help="default: the first report's folder")
+    parser.add_argument("--name", default=None, help="file name stem of the PNGs")
     args = parser.parse_args()
-    doc, points = load(args.report)
-    out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.report))
+    doc, points = load(args.reports[0])
+    for path in args.reports[1:]:
+        points += load(path)[1]
+    out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.reports[0]))
     if not os.path.isdir(out_dir):
         fail(f"{out_dir}: output folder does not exist")
-    stem = os.path.splitext(os.path.basename(args.report))[0]
+    stem = args.name or os.path.splitext(os.path.basename(args.reports[0]))[0]
     for path in plot(doc, points, out_dir, stem):
         print(path)
 
