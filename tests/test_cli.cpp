@@ -114,6 +114,19 @@ TEST(Cli, DimacsModeReportsOmegaAndRejectsBadInput) {
   fs::remove_all(dir);
 }
 
+TEST(Cli, GraphBeyondTheMemoryCapIsAnErrorNotACrash) {
+  const fs::path out = fs::temp_directory_path() / "vb_cli_cap.json";
+  const CliRun r = run("sweep --n 20000 --outliers 0.5 --trials 1 --max-graph-mb 10 --solvers clique --quiet --out " +
+                       out.string());
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("20000 vertices needs 47 MiB of adjacency rows, over the cap of 10 MiB"), std::string::npos)
+      << r.output;
+  std::ifstream in(out);
+  const auto doc = nlohmann::json::parse(in);  // the report is complete and says why
+  EXPECT_EQ(doc["results"][0]["status"], "error");
+  fs::remove(out);
+}
+
 TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
   const CliRun r = run("sweep --n 20 --outliers 0.5 --trials 1 --quiet --out /nonexistent/dir/r.json");
   EXPECT_NE(r.code, 0);
