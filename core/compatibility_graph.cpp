@@ -1,5 +1,6 @@
 #include "core/compatibility_graph.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <sstream>
@@ -12,9 +13,10 @@ namespace {
 
 using Word = BitGraph::Word;
 
-// Eq. (1) for one row: flags[j] = | ||m_j - m_i|| - ||q_j - q_i|| | < eps for j in [0, count).
-// Structure-of-arrays input so that the loop vectorises; compiled for AVX-512, AVX2 and baseline
-// x86-64 and picked at load time.
+// Eq. (1) for one row in single precision: flags[j] bit 0 = | ||m_j - m_i|| - ||q_j - q_i|| | < eps,
+// bit 1 = the float result is within `band` of eps and must be decided again in double. Structure-
+// of-arrays input so that the loop vectorises (16 lanes with AVX-512); compiled for AVX-512, AVX2
+// and baseline x86-64 and picked at load time.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define VB_MULTIVERSION __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
@@ -22,64 +24,103 @@ using Word = BitGraph::Word;
 #endif
 
 VB_MULTIVERSION
-void row_flags_3d(const double* const* c, const double* p, int count, double eps, std::uint8_t* flags) {
-  const double *mx = c[0], *my = c[1], *mz = c[2], *qx = c[3], *qy = c[4], *qz = c[5];
+void row_flags_3d(const float* const* c, const float* p, int count, float eps, float band, std::uint8_t* flags) {
+  const float *mx = c[0], *my = c[1], *mz = c[2], *qx = c[3], *qy = c[4], *qz = c[5];
   for (int j = 0; j < count; ++j) {
-    const double ax = mx[j] - p[0], ay = my[j] - p[1], az = mz[j] - p[2];
-    const double bx = qx[j] - p[3], by = qy[j] - p[4], bz = qz[j] - p[5];
-    flags[j] = std::fabs(std::sqrt(ax * ax + ay * ay + az * az) - std::sqrt(bx * bx + by * by + bz * bz)) < eps;
+    const float ax = mx[j] - p[0], ay = my[j] - p[1], az = mz[j] - p[2];
+    const float bx = qx[j] - p[3], by = qy[j] - p[4], bz = qz[j] - p[5];
+    const float d = std::fabs(std::sqrt(ax * ax + ay * ay + az * az) - std::sqrt(bx * bx + by * by + bz * bz));
+    flags[j] = static_cast<std::uint8_t>((d < eps) | ((std::fabs(d - eps) < band) << 1));
   }
 }
 
 VB_MULTIVERSION
-void row_flags_2d(const double* const* c, const double* p, int count, double eps, std::uint8_t* flags) {
-  const double *mx = c[0], *my = c[1], *qx = c[2], *qy = c[3];
+void row_flags_2d(const float* const* c, const float* p, int count, float eps, float band, std::uint8_t* flags) {
+  const float *mx = c[0], *my = c[1], *qx = c[2], *qy = c[3];
   for (int j = 0; j < count; ++j) {
-    const double ax = mx[j] - p[0], ay = my[j] - p[1];
-    const double bx = qx[j] - p[2], by = qy[j] - p[3];
-    flags[j] = std::fabs(std::sqrt(ax * ax + ay * ay) - std::sqrt(bx * bx + by * by)) < eps;
+    const float ax = mx[j] - p[0], ay = my[j] - p[1];
+    const float bx = qx[j] - p[2], by = qy[j] - p[3];
+    const float d = std::fabs(std::sqrt(ax * ax + ay * ay) - std::sqrt(bx * bx + by * by));
+    flags[j] = static_cast<std::uint8_t>((d < eps) | ((std::fabs(d - eps) < band) << 1));
   }
+}
+
+/// Eq. (1) in double precision, the definition the float kernel must reproduce.
+template <int Dim>
+bool compatible(const Correspondences<Dim>& corr, int i, int j, double eps) {
+  return std::abs((corr.source.col(i) - corr.source.col(j)).norm() -
+                  (corr.target.col(i) - corr.target.col(j)).norm()) < eps;
 }
 
 /// Eight 0/1 bytes to eight bits (byte k -> bit k): one multiply, no carries between terms.
 inline Word pack8(const std::uint8_t* flags) {
   std::uint64_t v;
   std::memcpy(&v, flags, 8);
-  return (v * 0x0102040810204080ull) >> 56;
+  return ((v & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56;
 }
 
-/// In-place transpose of a 64x64 bit block: bit c of row r moves to bit r of row c.
-void transpose64(Word* a) {
-  Word m = 0x00000000FFFFFFFFull;
-  for (int j = 32; j; j >>= 1, m ^= m << j) {
-    for (int k = 0; k < 64; k = ((k | j) + 1) & ~j) {
-      const Word t = ((a[k] >> j) ^ a[k | j]) & m;
-      a[k | j] ^= t;
-      a[k] ^= t << j;
+/// Coordinates for the float kernel: centred (distances do not change) so that float keeps as many
+/// digits as possible, and the uncertainty band that covers float rounding for this extent.
+template <int Dim>
+struct FloatColumns {
+  std::vector<std::vector<float>> cols;  // m_x, m_y, (m_z,) q_x, q_y, (q_z), padded by 64
+  float band = 0;
+
+  FloatColumns(const Correspondences<Dim>& corr, double eps) : cols(2 * Dim) {
+    const auto n = static_cast<std::size_t>(corr.size());
+    double extent = 0;
+    for (int side = 0; side < 2; ++side) {
+      const auto& pts = side == 0 ? corr.source : corr.target;
+      const Eigen::Matrix<double, Dim, 1> mean = pts.rowwise().mean();
+      for (int d = 0; d < Dim; ++d) {
+        auto& col = cols[static_cast<std::size_t>(side * Dim + d)];
+        col.assign(n + 64, 0.0f);
+        for (std::size_t i = 0; i < n; ++i) {
+          const double x = pts(d, static_cast<Eigen::Index>(i)) - mean(d);
+          extent = std::max(extent, std::abs(x));
+          col[i] = static_cast<float>(x);
+        }
+      }
     }
+    // Float error of |a - b| is below about 2.3e-6 * extent (rounding of centred coordinates,
+    // differences, squares and roots); the band is 4x that, plus the rounding of eps itself.
+    band = static_cast<float>(1e-5 * extent + 1e-6 * eps + 1e-12);
   }
-}
+};
 
 /// Fills the upper triangle (bits j > i of row i) for rows first, first + step, ...
 template <int Dim>
-void fill_upper_rows(BitGraph& g, const std::vector<std::vector<double>>& soa, double eps, int first, int step) {
+void fill_upper_rows(BitGraph& g, const Correspondences<Dim>& corr, const FloatColumns<Dim>& fc, double eps,
+                     int first, int step) {
   const int n = g.size();
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(n) + 64, 0);
-  const double* cols[2 * Dim];
-  for (int k = 0; k < 2 * Dim; ++k) cols[k] = soa[static_cast<std::size_t>(k)].data();
+  const float* cols[2 * Dim];
+  for (int k = 0; k < 2 * Dim; ++k) cols[k] = fc.cols[static_cast<std::size_t>(k)].data();
+  const float eps_f = static_cast<float>(eps);
   for (int i = first; i < n; i += step) {
     // Start at the word holding bit i + 1; bits <= i of that word are cleared below.
     const int w0 = (i + 1) / BitGraph::kWordBits;
     const int j0 = w0 * BitGraph::kWordBits;
     if (j0 >= n) continue;
-    double p[2 * Dim];
+    float p[2 * Dim];
     for (int k = 0; k < 2 * Dim; ++k) p[k] = cols[k][i];
-    const double* shifted[2 * Dim];
+    const float* shifted[2 * Dim];
     for (int k = 0; k < 2 * Dim; ++k) shifted[k] = cols[k] + j0;
     const int count = n - j0;
-    if constexpr (Dim == 3) row_flags_3d(shifted, p, count, eps, flags.data());
-    else row_flags_2d(shifted, p, count, eps, flags.data());
+    if constexpr (Dim == 3) row_flags_3d(shifted, p, count, eps_f, fc.band, flags.data());
+    else row_flags_2d(shifted, p, count, eps_f, fc.band, flags.data());
     std::memset(flags.data() + count, 0, 64);
+    // Pairs too close to eps for float: decide them in double (rare: a band of ~1e-5 extent).
+    for (int j = 0; j < count; j += 8) {
+      std::uint64_t v;
+      std::memcpy(&v, flags.data() + j, 8);
+      if (!(v & 0x0202020202020202ull)) continue;
+      for (int k = j; k < j + 8 && k < count; ++k) {
+        if (flags[static_cast<std::size_t>(k)] & 2) {
+          flags[static_cast<std::size_t>(k)] = compatible(corr, i, j0 + k, eps);
+        }
+      }
+    }
     Word* row = g.row(i);
     for (int w = w0; w < g.words(); ++w) {
       const std::uint8_t* f = flags.data() + static_cast<std::size_t>(w - w0) * 64;
@@ -102,7 +143,7 @@ void mirror(BitGraph& g) {
         const int i = I * 64 + r;
         block[r] = i < n ? g.row(i)[J] : 0;
       }
-      transpose64(block);
+      BitGraph::transpose_block(block);
       for (int r = 0; r < 64; ++r) {
         const int j = J * 64 + r;
         if (j < n) g.row(j)[I] |= block[r];
@@ -129,23 +170,17 @@ BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const Graph
     throw std::length_error(msg.str());
   }
   BitGraph g(static_cast<int>(n));
-  std::vector<std::vector<double>> soa(2 * Dim, std::vector<double>(n + 64, 0.0));
-  for (std::size_t i = 0; i < n; ++i) {
-    for (int d = 0; d < Dim; ++d) {
-      soa[static_cast<std::size_t>(d)][i] = corr.source(d, static_cast<Eigen::Index>(i));
-      soa[static_cast<std::size_t>(Dim + d)][i] = corr.target(d, static_cast<Eigen::Index>(i));
-    }
-  }
+  const FloatColumns<Dim> fc(corr, params.eps);
   int threads = params.threads > 0 ? params.threads : static_cast<int>(std::thread::hardware_concurrency());
   threads = std::max(1, std::min(threads, static_cast<int>(n / 256) + 1));
   if (threads == 1) {
-    fill_upper_rows<Dim>(g, soa, params.eps, 0, 1);
+    fill_upper_rows<Dim>(g, corr, fc, params.eps, 0, 1);
   } else {
     // Rows interleaved across workers: each writes only its own rows, so the graph is the same for
     // any thread count.
     std::vector<std::thread> pool;
     for (int t = 0; t < threads; ++t) {
-      pool.emplace_back([&, t] { fill_upper_rows<Dim>(g, soa, params.eps, t, threads); });
+      pool.emplace_back([&, t] { fill_upper_rows<Dim>(g, corr, fc, params.eps, t, threads); });
     }
     for (auto& th : pool) th.join();
   }

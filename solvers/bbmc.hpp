@@ -23,6 +23,12 @@ void for_each_bit(const Word* bits, int words, F&& f) {
   }
 }
 
+/// BBMC's bit-parallel greedy colouring of P (rows of `words` words from `rows`): stores the vertices
+/// of colour >= kmin in ord/col (room for |P|), returns how many; sets the classes used and |P|.
+/// U and Q are scratch bitsets of `words` words. Compiled for AVX-512, AVX2 and baseline x86-64.
+int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord, int* col,
+                  int* classes_used, int* coloured);
+
 /// Limits shared by every search of one solve: a deadline and a node budget, checked every 64 nodes.
 struct SearchBudget {
   SteadyClock::time_point deadline;
@@ -75,6 +81,15 @@ class BranchAndBound {
   int colour(const Word* P, int depth, int kmin) {
     auto& ord = order_[static_cast<std::size_t>(depth)];
     auto& col = colour_[static_cast<std::size_t>(depth)];
+    if (!recolour_) {
+      const int size = BitGraph::count(P, W_);
+      if (ord.size() < static_cast<std::size_t>(size)) {
+        ord.resize(static_cast<std::size_t>(size));
+        col.resize(static_cast<std::size_t>(size));
+      }
+      return colour_kernel(P, W_, g_.row(0), kmin, U_.data(), Q_.data(), ord.data(), col.data(), &colours_,
+                           &coloured_);
+    }
     Word* U = U_.data();
     Word* Q = Q_.data();
     std::copy(P, P + W_, U);

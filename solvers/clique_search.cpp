@@ -61,21 +61,30 @@ CoreDecomposition core_decomposition(const BitGraph& g) {
     vert[pos[v]] = v;
   }
   for (int d = max_deg; d > 0; --d) bin[d] = bin[d - 1];
-  if (max_deg >= 0 && !bin.empty()) bin[0] = 0;
+  bin[0] = 0;
+  // Only neighbours not removed yet can lose degree: scan row(v) & alive, which halves the visits.
+  const int W = g.words();
+  std::vector<Word> alive(static_cast<std::size_t>(W), 0);
+  for (int v = 0; v < n; ++v) alive[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
   for (int i = 0; i < n; ++i) {
     const int v = vert[i];
-    for_each_bit(g.row(v), g.words(), [&](int u) {
-      if (deg[u] > deg[v]) {
-        const int du = deg[u], pu = pos[u], pw = bin[du], w = vert[pw];
-        if (u != w) {
-          std::swap(vert[pu], vert[pw]);
-          pos[u] = pw;
-          pos[w] = pu;
+    alive[static_cast<std::size_t>(v / kBits)] &= ~(Word{1} << (v % kBits));
+    const Word* row = g.row(v);
+    for (int w = 0; w < W; ++w) {
+      for (Word x = row[w] & alive[static_cast<std::size_t>(w)]; x; x &= x - 1) {
+        const int u = w * kBits + detail::lowest_bit(x);
+        if (deg[u] <= deg[v]) continue;
+        // Move u to the front of its degree bucket, then shrink the bucket (Batagelj-Zaversnik).
+        const int du = deg[u], pu = pos[u], pf = bin[du], first = vert[pf];
+        if (u != first) {
+          std::swap(vert[pu], vert[pf]);
+          pos[u] = pf;
+          pos[first] = pu;
         }
         ++bin[du];
         --deg[u];
       }
-    });
+    }
   }
   cd.core = std::move(deg);
   cd.order = std::move(vert);

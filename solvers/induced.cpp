@@ -74,6 +74,40 @@ bool has_bmi2() {
 
 }  // namespace
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#endif
+int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord, int* col,
+                  int* classes_used, int* coloured) {
+  for (int w = 0; w < words; ++w) U[w] = P[w];
+  int k = 0, count = 0, lo = 0, total = 0;
+  for (;;) {
+    while (lo < words && U[lo] == 0) ++lo;
+    if (lo == words) break;
+    ++k;
+    for (int w = lo; w < words; ++w) Q[w] = U[w];
+    for (int w = lo; w < words; ++w) {
+      while (Q[w]) {
+        const int b = __builtin_ctzll(Q[w]);
+        const int v = w * kBits + b;
+        U[w] &= ~(Word{1} << b);
+        Q[w] &= ~(Word{1} << b);
+        const Word* N = rows + static_cast<std::size_t>(v) * static_cast<std::size_t>(words);
+        for (int x = w; x < words; ++x) Q[x] &= ~N[x];
+        ++total;
+        if (k >= kmin) {
+          ord[count] = v;
+          col[count] = k;
+          ++count;
+        }
+      }
+    }
+  }
+  *classes_used = k;
+  *coloured = total;
+  return count;
+}
+
 BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vertices, std::vector<Word>& mask) {
   std::vector<MaskWord> words;
   for (int v : vertices) {
@@ -97,18 +131,6 @@ BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vert
   return sub;
 }
 
-BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
-  std::vector<int> index(static_cast<std::size_t>(g.size()), -1);
-  for (std::size_t k = 0; k < vertices.size(); ++k) index[static_cast<std::size_t>(vertices[k])] = static_cast<int>(k);
-  BitGraph sub(static_cast<int>(vertices.size()));
-  for (std::size_t k = 0; k < vertices.size(); ++k) {
-    Word* out = sub.row(static_cast<int>(k));
-    for_each_bit(g.row(vertices[k]), g.words(), [&](int u) {
-      const int local = index[static_cast<std::size_t>(u)];
-      if (local >= 0) out[local / kBits] |= Word{1} << (local % kBits);
-    });
-  }
-  return sub;
-}
+BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) { return g.select(vertices); }
 
 }  // namespace verifybench::detail

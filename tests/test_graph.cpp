@@ -59,6 +59,35 @@ TEST(CompatibilityGraph, SameGraphForAnySizeAndThreadCount) {
   }
 }
 
+TEST(CompatibilityGraph, PairsExactlyAtEpsAreDecidedAsInDouble) {
+  // The kernel runs in float and re-decides pairs near eps in double: choose eps equal to a pair's
+  // own length difference (strictly-less fails) and one ulp above (passes), far from the origin.
+  SyntheticParams p;
+  p.n = 200;
+  p.outlier_ratio = 0.5;
+  p.extent = 500.0;
+  auto set = make_synthetic<3>(p);
+  set.corr.source.array() += 3000.0;  // large coordinates stress float precision
+  for (int trial = 0; trial < 20; ++trial) {
+    const int i = (trial * 37) % p.n, j = (trial * 91 + 5) % p.n;
+    if (i == j) continue;
+    const double diff = std::abs((set.corr.source.col(i) - set.corr.source.col(j)).norm() -
+                                 (set.corr.target.col(i) - set.corr.target.col(j)).norm());
+    if (diff <= 0.0) continue;
+    for (double eps : {diff, std::nextafter(diff, 1e300)}) {
+      const BitGraph g = build_compatibility_graph(set.corr, GraphParams{eps});
+      ASSERT_EQ(g.adjacent(i, j), diff < eps) << "pair " << i << "," << j << " eps " << eps;
+      for (int a = 0; a < p.n; ++a) {
+        for (int b = a + 1; b < p.n; ++b) {
+          const double dm = (set.corr.source.col(a) - set.corr.source.col(b)).norm();
+          const double dq = (set.corr.target.col(a) - set.corr.target.col(b)).norm();
+          ASSERT_EQ(g.adjacent(a, b), std::abs(dm - dq) < eps) << a << "," << b;
+        }
+      }
+    }
+  }
+}
+
 TEST(CompatibilityGraph, NoiselessInliersFormAClique) {
   SyntheticParams p;
   p.n = 200;
