@@ -1,4 +1,5 @@
-// Induced subgraphs by parallel bit extraction: with the members in ascending order, row k of the
+// BBMC kernels: the colouring loop (multi-versioned) and induced subgraphs by parallel bit
+// extraction: with the members in ascending order, row k of the
 // subgraph is the concatenation of pext(row(member k)[w], mask[w]) over the mask's words.
 #include <cstring>
 
