@@ -36,9 +36,7 @@ class BitGraph {
   static void transpose_block(Word* block);
   /// Set bits in `words` words (hardware popcount where the CPU has it).
   static int count(const Word* bits, int words);
-  /// Rows and columns `vertices` of this graph, in that order: vertex k of the result is
-  /// vertices[k]. Built by row selection and 64x64 bit-block transposes (the graph is symmetric).
-  BitGraph select(const std::vector<int>& vertices) const;
+
   long long edge_count() const;
   /// True when every pair of the listed vertices is adjacent.
   bool is_clique(const std::vector<int>& vertices) const;

@@ -132,6 +132,18 @@ BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vert
   return sub;
 }
 
-BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) { return g.select(vertices); }
+BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
+  std::vector<int> index(static_cast<std::size_t>(g.size()), -1);
+  for (std::size_t k = 0; k < vertices.size(); ++k) index[static_cast<std::size_t>(vertices[k])] = static_cast<int>(k);
+  BitGraph sub(static_cast<int>(vertices.size()));
+  for (std::size_t k = 0; k < vertices.size(); ++k) {
+    Word* out = sub.row(static_cast<int>(k));
+    for_each_bit(g.row(vertices[k]), g.words(), [&](int u) {
+      const int local = index[static_cast<std::size_t>(u)];
+      if (local >= 0) out[local / kBits] |= Word{1} << (local % kBits);
+    });
+  }
+  return sub;
+}
 
 }  // namespace verifybench::detail
