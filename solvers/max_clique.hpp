@@ -3,11 +3,13 @@
 // solvers, the DIMACS mode and the benchmarks all run the same code:
 //   bbmc        BBMC (San Segundo et al. 2011): bitset branch and bound, greedy colouring bound,
 //               min-width initial order; exact
+//   bbmcr       bbmc with re-colouring of branching candidates (Re-NUMBER; BBMCR)
 //   bbmc-kcore  bbmc after a greedy lower bound and k-core pruning (as PMC does inside TEASER++)
 //   bbmc-dec    PMC-style decomposition: for each vertex in degeneracy order, BBMC on its later
 //               neighbours (a compact subgraph of at most degeneracy vertices); exact; parallel
 //               with the same clique for any thread count
 //   greedy      the greedy clique alone: no optimality proof (to show what exactness buys)
+//   cliquer, igraph  peers from Debian's libcliquer and libigraph (clique_peers.cpp)
 #include <functional>
 #include <limits>
 #include <string>
@@ -47,7 +49,7 @@ class CliqueAlgorithms {
   static std::vector<CliqueAlgorithmInfo> list();  ///< sorted by name
 };
 
-/// Registers bbmc, bbmc-kcore, bbmc-dec, greedy and the peers built in (idempotent).
+/// Registers bbmc, bbmcr, bbmc-kcore, bbmc-dec, greedy and the peers (idempotent).
 void register_clique_algorithms();
 
 /// The default exact algorithm (the one behind the `clique` solver).
