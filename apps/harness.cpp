@@ -11,8 +11,9 @@
 namespace verifybench {
 
 template <int Dim>
-TrialRecord evaluate(const Solver& solver, const std::string& solver_name, const LabeledSet<Dim>& set,
-                     const SolverParams& params, const SuccessCriteria& criteria) {
+TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
+                     const LabeledSet<Dim>& set, const SolverParams& params,
+                     const SuccessCriteria& criteria) {
   StopWatch clock;
   const Result<Dim> result = solver.solve(set.corr, params);
   TrialRecord r;
@@ -42,7 +43,8 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name, const
     r.inlier_precision = s.precision;
     r.inlier_recall = s.recall;
     r.inlier_f1 = s.f1;
-    r.true_inliers = static_cast<int>(std::count(set.truth.labels.begin(), set.truth.labels.end(), 1));
+    r.true_inliers =
+        static_cast<int>(std::count(set.truth.labels.begin(), set.truth.labels.end(), 1));
   }
   if (set.truth.T_target_source) {
     r.rotation_error_deg = rotation_error_deg(result.T_target_source, *set.truth.T_target_source);
@@ -98,8 +100,10 @@ std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgres
   for (int dim : config.dims) {
     for (double ratio : config.outlier_ratios) {
       std::vector<TrialRecord> point;
-      if (dim == 2) sweep_point<2>(config, ratio, point);
-      else sweep_point<3>(config, ratio, point);
+      if (dim == 2)
+        sweep_point<2>(config, ratio, point);
+      else
+        sweep_point<3>(config, ratio, point);
       if (progress) progress(point);
       const bool failed = !point.empty() && point.back().status == "error";
       rows.insert(rows.end(), point.begin(), point.end());
@@ -110,9 +114,10 @@ std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgres
 }
 
 template <int Dim>
-std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers, const LabeledSet<Dim>& set,
-                                    const std::string& dataset, int trials, std::uint64_t seed,
-                                    const SolverParams& params, const SuccessCriteria& criteria) {
+std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
+                                    const LabeledSet<Dim>& set, const std::string& dataset,
+                                    int trials, std::uint64_t seed, const SolverParams& params,
+                                    const SuccessCriteria& criteria) {
   std::vector<TrialRecord> rows;
   for (const auto& name : solvers) {
     const auto solver = SolverRegistry::create(name);
@@ -132,11 +137,13 @@ template TrialRecord evaluate<2>(const Solver&, const std::string&, const Labele
                                  const SolverParams&, const SuccessCriteria&);
 template TrialRecord evaluate<3>(const Solver&, const std::string&, const LabeledSet<3>&,
                                  const SolverParams&, const SuccessCriteria&);
-template std::vector<TrialRecord> run_on_set<2>(const std::vector<std::string>&, const LabeledSet<2>&,
-                                                const std::string&, int, std::uint64_t,
-                                                const SolverParams&, const SuccessCriteria&);
-template std::vector<TrialRecord> run_on_set<3>(const std::vector<std::string>&, const LabeledSet<3>&,
-                                                const std::string&, int, std::uint64_t,
-                                                const SolverParams&, const SuccessCriteria&);
+template std::vector<TrialRecord> run_on_set<2>(const std::vector<std::string>&,
+                                                const LabeledSet<2>&, const std::string&, int,
+                                                std::uint64_t, const SolverParams&,
+                                                const SuccessCriteria&);
+template std::vector<TrialRecord> run_on_set<3>(const std::vector<std::string>&,
+                                                const LabeledSet<3>&, const std::string&, int,
+                                                std::uint64_t, const SolverParams&,
+                                                const SuccessCriteria&);
 
 }  // namespace verifybench

@@ -13,8 +13,9 @@ namespace verifybench {
 
 /// Times solver.solve() and scores the result against `set.truth` (which the solver never sees).
 template <int Dim>
-TrialRecord evaluate(const Solver& solver, const std::string& solver_name, const LabeledSet<Dim>& set,
-                     const SolverParams& params, const SuccessCriteria& criteria);
+TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
+                     const LabeledSet<Dim>& set, const SolverParams& params,
+                     const SuccessCriteria& criteria);
 
 struct SweepConfig {
   std::vector<std::string> solvers{"clique", "ransac"};
@@ -41,8 +42,9 @@ std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgres
 /// Runs each solver `trials` times on one set (a real dump); trial t uses solver seed
 /// derive_seed(seed, {t}).
 template <int Dim>
-std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers, const LabeledSet<Dim>& set,
-                                    const std::string& dataset, int trials, std::uint64_t seed,
-                                    const SolverParams& params, const SuccessCriteria& criteria);
+std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
+                                    const LabeledSet<Dim>& set, const std::string& dataset,
+                                    int trials, std::uint64_t seed, const SolverParams& params,
+                                    const SuccessCriteria& criteria);
 
 }  // namespace verifybench

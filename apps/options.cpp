@@ -165,7 +165,8 @@ std::vector<double> parse_range(const std::string& option, const std::string& te
     const double stop = in_bounds(parse_real(option + " stop", parts[1]), parts[1]);
     const double step = parse_real(option + " step", parts[2]);
     if (!(step > 0.0)) throw UsageError(option + ": step '" + parts[2] + "' must be > 0");
-    if (stop < start) throw UsageError(option + ": stop " + parts[1] + " is below start " + parts[0]);
+    if (stop < start)
+      throw UsageError(option + ": stop " + parts[1] + " is below start " + parts[0]);
     for (long k = 0;; ++k) {
       const double v = round10(start + double(k) * step);
       if (v >= stop - 1e-9) break;

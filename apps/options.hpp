@@ -26,7 +26,8 @@ class Options {
     positional_name_ = name;
     return *this;
   }
-  /// Throws UsageError on an unknown option, a missing value, a repeated option or a stray argument.
+  /// Throws UsageError on an unknown option, a missing value, a repeated option or a stray
+  /// argument.
   void parse(const std::vector<std::string>& args);
   const std::vector<std::string>& positional() const { return positional_; }
   std::string help() const;
@@ -39,13 +40,15 @@ class Options {
   double real(const std::string& name, double min, double max) const;
   long long integer(const std::string& name, long long min, long long max) const;
   std::uint64_t seed(const std::string& name) const;
-  std::vector<std::string> list(const std::string& name) const;  ///< comma-separated, non-empty items
+  std::vector<std::string> list(
+      const std::string& name) const;  ///< comma-separated, non-empty items
 
  private:
   struct Spec {
     std::string value_name, fallback, help;
   };
-  [[noreturn]] void bad(const std::string& name, const std::string& value, const std::string& why) const;
+  [[noreturn]] void bad(const std::string& name, const std::string& value,
+                        const std::string& why) const;
   std::vector<std::string> order_;
   std::map<std::string, Spec> specs_;
   std::map<std::string, std::string> values_;
@@ -55,7 +58,8 @@ class Options {
 };
 
 /// Parses "start:stop:step" (stop included) or "a,b,c" into values within [min, max].
-std::vector<double> parse_range(const std::string& option, const std::string& text, double min, double max);
+std::vector<double> parse_range(const std::string& option, const std::string& text, double min,
+                                double max);
 
 /// Strict number parsing; throws UsageError naming `what` and the text.
 double parse_real(const std::string& what, const std::string& text);

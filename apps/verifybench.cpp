@@ -1,18 +1,17 @@
 // verifybench: command-line front end. list | sweep | run; see `verifybench --help`.
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <variant>
 
 #include "apps/harness.hpp"
 #include "apps/options.hpp"
-#include <filesystem>
-
 #include "generators/dimacs.hpp"
 #include "generators/dump_reader.hpp"
-#include "solvers/max_clique.hpp"
-#include "solvers/timer.hpp"
 #include "reports/report.hpp"
+#include "solvers/max_clique.hpp"
 #include "solvers/registry.hpp"
+#include "solvers/timer.hpp"
 
 namespace vb = verifybench;
 using nlohmann::json;
@@ -32,13 +31,16 @@ void add_solver_options(vb::Options& o) {
   o.add("solvers", "A,B", "clique,ransac", "solvers to run (see `verifybench list`)")
       .add("eps", "M", "0.1", "pair length tolerance of the correspondence graph, Eq. (1) [m]")
       .add("inlier-threshold", "M", "", "RANSAC residual threshold [m] (default: eps)")
-      .add("min-inliers", "K", "0", "accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
+      .add("min-inliers", "K", "0",
+           "accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
       .add("time-limit", "S", "60", "per-solve time limit [s]; best-so-far returned past it")
       .add("ransac-iterations", "K", "10000", "RANSAC iterations (cap when adaptive)")
       .add("ransac-adaptive", "", "", "RANSAC: adaptive iteration count")
       .add("ransac-confidence", "P", "0.999", "RANSAC: confidence of the adaptive count")
       .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
-      .add("threads", "T", "1", "threads for graph construction and clique-bbmc-dec (0 = all cores); results do not depend on it")
+      .add("threads", "T", "1",
+           "threads for graph construction and clique-bbmc-dec (0 = all cores); results do not "
+           "depend on it")
       .add("mac-max-cliques", "K", "1000000", "mac: stop enumerating maximal cliques after K")
       .add("mac-min-clique", "K", "3", "mac: smallest maximal clique that makes a hypothesis")
       .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
@@ -51,7 +53,8 @@ void add_solver_options(vb::Options& o) {
 vb::SolverParams solver_params(const vb::Options& o) {
   vb::SolverParams p;
   p.eps = o.real("eps", 1e-12, 1e12);
-  p.inlier_threshold = o.given("inlier-threshold") ? o.real("inlier-threshold", 1e-12, 1e12) : p.eps;
+  p.inlier_threshold =
+      o.given("inlier-threshold") ? o.real("inlier-threshold", 1e-12, 1e12) : p.eps;
   p.min_inliers = static_cast<int>(o.integer("min-inliers", 0, 1 << 30));
   p.time_limit_s = o.real("time-limit", 1e-6, 1e9);
   p.ransac_iterations = static_cast<int>(o.integer("ransac-iterations", 1, 2000000000));
@@ -141,7 +144,8 @@ int cmd_list() {
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
   vb::Options o;
   o.allow_positional("FILE.clq")
-      .add("algorithms", "A,B", vb::kDefaultCliqueAlgorithm, "clique algorithms (see `verifybench list`)")
+      .add("algorithms", "A,B", vb::kDefaultCliqueAlgorithm,
+           "clique algorithms (see `verifybench list`)")
       .add("time-limit", "S", "60", "per-search time limit [s]")
       .add("threads", "T", "1", "threads of the parallel algorithms (bbmc-dec; 0 = all cores)")
       .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
@@ -160,7 +164,8 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   vb::CliqueSearchParams params;
   params.time_limit_s = o.real("time-limit", 1e-6, 1e9);
   params.threads = static_cast<int>(o.integer("threads", 0, 1024));
-  const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
+  const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30))
+                                << 20;
   const std::string out = o.required("out");
 
   std::vector<vb::CliqueRecord> rows;
@@ -207,13 +212,16 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
       rows.push_back(std::move(r));
     }
   }
-  json parameters = {{"mode", "dimacs"}, {"algorithms", names}, {"time_limit_s", params.time_limit_s},
+  json parameters = {{"mode", "dimacs"},
+                     {"algorithms", names},
+                     {"time_limit_s", params.time_limit_s},
                      {"threads", params.threads}};
   vb::write_json_atomic(out, vb::make_report(vb::make_context(argv, 0), parameters, rows));
   std::cout << out << "\n";
   for (const auto& r : rows) {
     if (r.status == "error") {
-      std::cerr << "verifybench: error: " << r.algorithm << " on " << r.graph << ": " << r.message << "\n";
+      std::cerr << "verifybench: error: " << r.algorithm << " on " << r.graph << ": " << r.message
+                << "\n";
       return 1;
     }
   }
@@ -225,7 +233,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   add_solver_options(o);
   o.add("dim", "D", "3", "dimension: 2, 3 or 2,3")
       .add("n", "N", "500", "correspondences per set")
-      .add("outliers", "RANGE", "0.5:0.99:0.05", "outlier ratios: start:stop:step (stop included) or a,b,c")
+      .add("outliers", "RANGE", "0.5:0.99:0.05",
+           "outlier ratios: start:stop:step (stop included) or a,b,c")
       .add("noise", "SIGMA", "0.01", "Gaussian noise per axis on inlier targets [m]")
       .add("extent", "M", "10", "side of the cube (square) the points are drawn in [m]")
       .add("trials", "K", "20", "sets per (dim, outlier ratio) point");
@@ -252,9 +261,14 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   const std::string out = o.required("out");
 
   json parameters = params_json(c.params, c.criteria);
-  parameters["sweep"] = {{"generator", "uniform"}, {"dims", c.dims}, {"n", c.n},
-                         {"outlier_ratios", c.outlier_ratios}, {"noise", c.noise},
-                         {"extent", c.extent}, {"trials", c.trials}, {"solvers", c.solvers}};
+  parameters["sweep"] = {{"generator", "uniform"},
+                         {"dims", c.dims},
+                         {"n", c.n},
+                         {"outlier_ratios", c.outlier_ratios},
+                         {"noise", c.noise},
+                         {"extent", c.extent},
+                         {"trials", c.trials},
+                         {"solvers", c.solvers}};
   vb::SweepProgress progress;
   if (!o.flag("quiet")) progress = print_point;
   const auto rows = vb::run_sweep(c, progress);

@@ -12,7 +12,8 @@
 
 namespace vb = verifybench;
 
-static void run_search(benchmark::State& state, const std::string& algorithm, const vb::BitGraph& g) {
+static void run_search(benchmark::State& state, const std::string& algorithm,
+                       const vb::BitGraph& g) {
   vb::register_clique_algorithms();
   const auto& info = vb::CliqueAlgorithms::get(algorithm);
   std::size_t omega = 0;
@@ -50,8 +51,8 @@ static void Args(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond);
 }
 
-#define VB_CLIQUE_BENCH(name, algorithm)                                         \
-  BENCHMARK_CAPTURE(BM_Synthetic, name, std::string(algorithm))->Apply(Args);    \
+#define VB_CLIQUE_BENCH(name, algorithm)                                      \
+  BENCHMARK_CAPTURE(BM_Synthetic, name, std::string(algorithm))->Apply(Args); \
   BENCHMARK_CAPTURE(BM_Dump6614, name, std::string(algorithm))->Unit(benchmark::kMillisecond)
 
 VB_CLIQUE_BENCH(bbmc, "bbmc");

@@ -17,7 +17,12 @@ static void BM_CompatibilityGraph(benchmark::State& state) {
     benchmark::DoNotOptimize(g.row(0));
   }
   const double pairs = 0.5 * double(p.n) * double(p.n - 1);
-  state.counters["pairs_per_s"] = benchmark::Counter(pairs, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["pairs_per_s"] =
+      benchmark::Counter(pairs, benchmark::Counter::kIsIterationInvariantRate);
 }
-BENCHMARK_TEMPLATE(BM_CompatibilityGraph, 3)->Arg(500)->Arg(2000)->Arg(6614)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_CompatibilityGraph, 3)
+    ->Arg(500)
+    ->Arg(2000)
+    ->Arg(6614)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_CompatibilityGraph, 2)->Arg(500)->Arg(2000)->Unit(benchmark::kMillisecond);

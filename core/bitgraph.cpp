@@ -2,11 +2,11 @@
 
 #include <algorithm>
 
-
 namespace verifybench {
 
 BitGraph::BitGraph(int n)
-    : n_(n), words_((n + kWordBits - 1) / kWordBits),
+    : n_(n),
+      words_((n + kWordBits - 1) / kWordBits),
       bits_(static_cast<std::size_t>(n) * static_cast<std::size_t>(words_), 0) {}
 
 std::size_t BitGraph::bytes_for(std::size_t n) {
@@ -14,7 +14,8 @@ std::size_t BitGraph::bytes_for(std::size_t n) {
 }
 
 namespace {
-// Baseline x86-64 has no popcnt instruction; pick it (and wider vectors) at load time where present.
+// Baseline x86-64 has no popcnt instruction; pick it (and wider vectors) at load time where
+// present.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "popcnt", "default")))
 #endif

@@ -25,9 +25,7 @@ class BitGraph {
     row(u)[v / kWordBits] |= Word{1} << (v % kWordBits);
     row(v)[u / kWordBits] |= Word{1} << (u % kWordBits);
   }
-  bool adjacent(int u, int v) const {
-    return (row(u)[v / kWordBits] >> (v % kWordBits)) & Word{1};
-  }
+  bool adjacent(int u, int v) const { return (row(u)[v / kWordBits] >> (v % kWordBits)) & Word{1}; }
   const Word* row(int v) const { return bits_.data() + static_cast<std::size_t>(v) * words_; }
   Word* row(int v) { return bits_.data() + static_cast<std::size_t>(v) * words_; }
 

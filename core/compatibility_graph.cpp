@@ -13,29 +13,33 @@ namespace {
 
 using Word = BitGraph::Word;
 
-// Eq. (1) for one row in single precision: flags[j] bit 0 = | ||m_j - m_i|| - ||q_j - q_i|| | < eps,
-// bit 1 = the float result is within `band` of eps and must be decided again in double. Structure-
-// of-arrays input so that the loop vectorises (16 lanes with AVX-512); compiled for AVX-512, AVX2
-// and baseline x86-64 and picked at load time.
+// Eq. (1) for one row in single precision: flags[j] bit 0 = | ||m_j - m_i|| - ||q_j - q_i|| | <
+// eps, bit 1 = the float result is within `band` of eps and must be decided again in double.
+// Structure- of-arrays input so that the loop vectorises (16 lanes with AVX-512); compiled for
+// AVX-512, AVX2 and baseline x86-64 and picked at load time.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define VB_MULTIVERSION __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define VB_MULTIVERSION \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define VB_MULTIVERSION
 #endif
 
 VB_MULTIVERSION
-void row_flags_3d(const float* const* c, const float* p, int count, float eps, float band, std::uint8_t* flags) {
+void row_flags_3d(const float* const* c, const float* p, int count, float eps, float band,
+                  std::uint8_t* flags) {
   const float *mx = c[0], *my = c[1], *mz = c[2], *qx = c[3], *qy = c[4], *qz = c[5];
   for (int j = 0; j < count; ++j) {
     const float ax = mx[j] - p[0], ay = my[j] - p[1], az = mz[j] - p[2];
     const float bx = qx[j] - p[3], by = qy[j] - p[4], bz = qz[j] - p[5];
-    const float d = std::fabs(std::sqrt(ax * ax + ay * ay + az * az) - std::sqrt(bx * bx + by * by + bz * bz));
+    const float d =
+        std::fabs(std::sqrt(ax * ax + ay * ay + az * az) - std::sqrt(bx * bx + by * by + bz * bz));
     flags[j] = static_cast<std::uint8_t>((d < eps) | ((std::fabs(d - eps) < band) << 1));
   }
 }
 
 VB_MULTIVERSION
-void row_flags_2d(const float* const* c, const float* p, int count, float eps, float band, std::uint8_t* flags) {
+void row_flags_2d(const float* const* c, const float* p, int count, float eps, float band,
+                  std::uint8_t* flags) {
   const float *mx = c[0], *my = c[1], *qx = c[2], *qy = c[3];
   for (int j = 0; j < count; ++j) {
     const float ax = mx[j] - p[0], ay = my[j] - p[1];
@@ -90,8 +94,8 @@ struct FloatColumns {
 
 /// Fills the upper triangle (bits j > i of row i) for rows first, first + step, ...
 template <int Dim>
-void fill_upper_rows(BitGraph& g, const Correspondences<Dim>& corr, const FloatColumns<Dim>& fc, double eps,
-                     int first, int step) {
+void fill_upper_rows(BitGraph& g, const Correspondences<Dim>& corr, const FloatColumns<Dim>& fc,
+                     double eps, int first, int step) {
   const int n = g.size();
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(n) + 64, 0);
   const float* cols[2 * Dim];
@@ -107,8 +111,10 @@ void fill_upper_rows(BitGraph& g, const Correspondences<Dim>& corr, const FloatC
     const float* shifted[2 * Dim];
     for (int k = 0; k < 2 * Dim; ++k) shifted[k] = cols[k] + j0;
     const int count = n - j0;
-    if constexpr (Dim == 3) row_flags_3d(shifted, p, count, eps_f, fc.band, flags.data());
-    else row_flags_2d(shifted, p, count, eps_f, fc.band, flags.data());
+    if constexpr (Dim == 3)
+      row_flags_3d(shifted, p, count, eps_f, fc.band, flags.data());
+    else
+      row_flags_2d(shifted, p, count, eps_f, fc.band, flags.data());
     std::memset(flags.data() + count, 0, 64);
     // Pairs too close to eps for float: decide them in double (rare: a band of ~1e-5 extent).
     for (int j = 0; j < count; j += 8) {
@@ -171,7 +177,8 @@ BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const Graph
   }
   BitGraph g(static_cast<int>(n));
   const FloatColumns<Dim> fc(corr, params.eps);
-  int threads = params.threads > 0 ? params.threads : static_cast<int>(std::thread::hardware_concurrency());
+  int threads =
+      params.threads > 0 ? params.threads : static_cast<int>(std::thread::hardware_concurrency());
   threads = std::max(1, std::min(threads, static_cast<int>(n / 256) + 1));
   if (threads == 1) {
     fill_upper_rows<Dim>(g, corr, fc, params.eps, 0, 1);

@@ -12,7 +12,7 @@ namespace verifybench {
 struct GraphParams {
   double eps = 0.1;                              ///< pair length tolerance [m], > 0
   std::size_t max_bytes = std::size_t{4} << 30;  ///< refuse graphs whose rows exceed this
-  int threads = 1;                               ///< worker threads (0 = all cores); same graph for any count
+  int threads = 1;  ///< worker threads (0 = all cores); same graph for any count
 };
 
 /// Throws std::invalid_argument for eps <= 0 and std::length_error (with the sizes) when the

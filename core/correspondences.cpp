@@ -21,7 +21,8 @@ void validate(const Correspondences<Dim>& corr) {
         if (!std::isfinite(v)) {
           std::ostringstream msg;
           msg << "non-finite coordinate in correspondence " << i << ": "
-              << (side == &corr.source ? "source" : "target") << "." << "xyz"[d] << " = " << v;
+              << (side == &corr.source ? "source" : "target") << "."
+              << "xyz"[d] << " = " << v;
           throw std::invalid_argument(msg.str());
         }
       }

@@ -7,7 +7,8 @@
 
 namespace verifybench {
 
-/// Rigid motion in SE(Dim). Named by frames: T_target_source maps source points into the target frame.
+/// Rigid motion in SE(Dim). Named by frames: T_target_source maps source points into the target
+/// frame.
 template <int Dim>
 using Rigid = Eigen::Transform<double, Dim, Eigen::Isometry>;
 
@@ -34,7 +35,8 @@ struct LabeledSet {
   GroundTruth<Dim> truth;
 };
 
-/// Throws std::invalid_argument naming the first bad field: mismatched sizes or a non-finite coordinate.
+/// Throws std::invalid_argument naming the first bad field: mismatched sizes or a non-finite
+/// coordinate.
 template <int Dim>
 void validate(const Correspondences<Dim>& corr);
 

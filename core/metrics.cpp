@@ -19,7 +19,8 @@ double translation_error(const Rigid<Dim>& estimate, const Rigid<Dim>& truth) {
   return (estimate.translation() - truth.translation()).norm();
 }
 
-InlierScores inlier_scores(const std::vector<int>& selected, const std::vector<std::uint8_t>& labels) {
+InlierScores inlier_scores(const std::vector<int>& selected,
+                           const std::vector<std::uint8_t>& labels) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::size_t true_positive = 0;
   for (int i : selected) {

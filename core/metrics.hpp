@@ -1,5 +1,6 @@
 #pragma once
-// Accuracy of an estimate against ground truth; NaN marks "undefined" (e.g. precision of an empty set).
+// Accuracy of an estimate against ground truth; NaN marks "undefined" (e.g. precision of an empty
+// set).
 #include <cstdint>
 #include <vector>
 
@@ -22,7 +23,9 @@ struct InlierScores {
   double f1;         ///< harmonic mean; NaN when either is NaN, 0 when both are 0
 };
 
-/// `labels[i]` is 1 for a true inlier. Throws std::out_of_range for a selected index outside labels.
-InlierScores inlier_scores(const std::vector<int>& selected, const std::vector<std::uint8_t>& labels);
+/// `labels[i]` is 1 for a true inlier. Throws std::out_of_range for a selected index outside
+/// labels.
+InlierScores inlier_scores(const std::vector<int>& selected,
+                           const std::vector<std::uint8_t>& labels);
 
 }  // namespace verifybench

@@ -7,7 +7,8 @@
 namespace verifybench {
 
 template <int Dim>
-std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr, const std::vector<int>& indices,
+std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr,
+                                    const std::vector<int>& indices,
                                     const std::vector<double>& weights) {
   using Vec = Eigen::Matrix<double, Dim, 1>;
   using Mat = Eigen::Matrix<double, Dim, Dim>;
@@ -48,7 +49,8 @@ std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr, const std:
   if (!(spread > 0.0) || s(Dim - 2) <= tol) return std::nullopt;
 
   Mat D = Mat::Identity();
-  D(Dim - 1, Dim - 1) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  D(Dim - 1, Dim - 1) =
+      (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
   const Mat R = svd.matrixV() * D * svd.matrixU().transpose();
 
   Rigid<Dim> T = Rigid<Dim>::Identity();

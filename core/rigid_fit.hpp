@@ -15,7 +15,8 @@ namespace verifybench {
 /// Returns nullopt when fewer than 2 points carry weight or the points are degenerate
 /// (all coincident, or in 3D all collinear), where the rotation is not determined.
 template <int Dim>
-std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr, const std::vector<int>& indices,
+std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr,
+                                    const std::vector<int>& indices,
                                     const std::vector<double>& weights = {});
 
 /// All correspondences, unweighted.

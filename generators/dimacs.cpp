@@ -13,7 +13,8 @@ namespace {
   throw InputError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
 }
 
-long long parse_id(const std::string& path, int line, const std::string& field, const std::string& token) {
+long long parse_id(const std::string& path, int line, const std::string& field,
+                   const std::string& token) {
   errno = 0;
   char* end = nullptr;
   const long long v = std::strtoll(token.c_str(), &end, 10);
@@ -45,9 +46,10 @@ BitGraph read_dimacs(const std::string& path, std::size_t max_bytes) {
       parse_id(path, line, "M", m_text);
       if (n < 0 || n > 100000000) fail(path, line, "field N: '" + n_text + "' is out of range");
       if (BitGraph::bytes_for(static_cast<std::size_t>(n)) > max_bytes) {
-        fail(path, line, "a graph of " + n_text + " vertices needs " +
-                             std::to_string(BitGraph::bytes_for(static_cast<std::size_t>(n)) >> 20) +
-                             " MiB, over the cap of " + std::to_string(max_bytes >> 20) + " MiB");
+        fail(path, line,
+             "a graph of " + n_text + " vertices needs " +
+                 std::to_string(BitGraph::bytes_for(static_cast<std::size_t>(n)) >> 20) +
+                 " MiB, over the cap of " + std::to_string(max_bytes >> 20) + " MiB");
       }
       g = BitGraph(static_cast<int>(n));
       have_header = true;

@@ -70,9 +70,9 @@ LabeledSet<Dim> to_set(const std::string& file, const std::vector<Row>& rows) {
   for (Eigen::Index i = 0; i < n; ++i) {
     const Row& r = rows[static_cast<std::size_t>(i)];
     if (r.values.size() != 2 * Dim) {
-      fail(file, r.line, "expected " + std::to_string(2 * Dim) + " fields (as on line " +
-                             std::to_string(rows.front().line) + "), found " +
-                             std::to_string(r.values.size()));
+      fail(file, r.line,
+           "expected " + std::to_string(2 * Dim) + " fields (as on line " +
+               std::to_string(rows.front().line) + "), found " + std::to_string(r.values.size()));
     }
     for (int d = 0; d < Dim; ++d) {
       set.corr.source(d, i) = r.values[static_cast<std::size_t>(d)];
@@ -91,8 +91,9 @@ std::vector<std::uint8_t> read_labels(const std::string& file, std::size_t expec
     labels.push_back(r.values[0] == 1.0 ? 1 : 0);
   }
   if (labels.size() != expected) {
-    fail(file, 0, "has " + std::to_string(labels.size()) + " labels but corr.txt has " +
-                      std::to_string(expected) + " correspondences");
+    fail(file, 0,
+         "has " + std::to_string(labels.size()) + " labels but corr.txt has " +
+             std::to_string(expected) + " correspondences");
   }
   return labels;
 }
@@ -102,15 +103,16 @@ Rigid<Dim> read_transform(const std::string& file) {
   constexpr int H = Dim + 1;
   const auto rows = read_rows(file, [](int col) { return "column " + std::to_string(col + 1); });
   if (rows.size() != H) {
-    fail(file, 0, "expected a " + std::to_string(H) + "x" + std::to_string(H) +
-                      " matrix for a " + std::to_string(Dim) + "D dump, found " +
-                      std::to_string(rows.size()) + " rows");
+    fail(file, 0,
+         "expected a " + std::to_string(H) + "x" + std::to_string(H) + " matrix for a " +
+             std::to_string(Dim) + "D dump, found " + std::to_string(rows.size()) + " rows");
   }
   Eigen::Matrix<double, H, H> M;
   for (int r = 0; r < H; ++r) {
     if (rows[r].values.size() != H) {
-      fail(file, rows[r].line, "expected " + std::to_string(H) + " fields, found " +
-                                   std::to_string(rows[r].values.size()));
+      fail(file, rows[r].line,
+           "expected " + std::to_string(H) + " fields, found " +
+               std::to_string(rows[r].values.size()));
     }
     for (int c = 0; c < H; ++c) M(r, c) = rows[r].values[static_cast<std::size_t>(c)];
   }
@@ -120,11 +122,13 @@ Rigid<Dim> read_transform(const std::string& file) {
   const Eigen::Matrix<double, Dim, Dim> R = M.template topLeftCorner<Dim, Dim>();
   const double orth = (R.transpose() * R - Eigen::Matrix<double, Dim, Dim>::Identity()).norm();
   if (orth > 1e-4 || R.determinant() < 0.0) {
-    fail(file, 0, "rotation block is not a rotation (|R^T R - I| = " + std::to_string(orth) +
-                      ", det = " + std::to_string(R.determinant()) + ")");
+    fail(file, 0,
+         "rotation block is not a rotation (|R^T R - I| = " + std::to_string(orth) +
+             ", det = " + std::to_string(R.determinant()) + ")");
   }
   // Project onto SO(Dim) so that printed digits do not leave a slightly non-orthogonal matrix.
-  Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(R,
+                                                        Eigen::ComputeFullU | Eigen::ComputeFullV);
   Rigid<Dim> T = Rigid<Dim>::Identity();
   T.linear() = svd.matrixU() * svd.matrixV().transpose();
   T.translation() = M.template topRightCorner<Dim, 1>();
@@ -147,13 +151,15 @@ AnySet read_text_dump(const std::string& dir) {
   if (!fs::is_directory(dir)) fail(dir, 0, "dump folder does not exist or is not a folder");
   const std::string corr_file = (fs::path(dir) / "corr.txt").string();
   if (!fs::exists(corr_file)) fail(corr_file, 0, "missing (a dump folder needs corr.txt)");
-  const auto rows = read_rows(corr_file, [](int col) { return "column " + std::to_string(col + 1); });
+  const auto rows =
+      read_rows(corr_file, [](int col) { return "column " + std::to_string(col + 1); });
   if (rows.empty()) fail(corr_file, 0, "no correspondences (empty set)");
   const std::size_t columns = rows.front().values.size();
   if (columns == 6) return finish<3>(dir, corr_file, rows);
   if (columns == 4) return finish<2>(dir, corr_file, rows);
-  fail(corr_file, rows.front().line, "expected 6 fields (xs ys zs xt yt zt) or 4 (xs ys xt yt), found " +
-                                         std::to_string(columns));
+  fail(
+      corr_file, rows.front().line,
+      "expected 6 fields (xs ys zs xt yt zt) or 4 (xs ys xt yt), found " + std::to_string(columns));
 }
 
 }  // namespace verifybench

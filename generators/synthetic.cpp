@@ -39,7 +39,8 @@ Eigen::Matrix3d random_rotation<3>(std::mt19937_64& rng) {
 
 void SyntheticParams::validate() const {
   require(n >= 1, "n", n, "an integer >= 1");
-  require(outlier_ratio >= 0.0 && outlier_ratio <= 1.0, "outlier_ratio", outlier_ratio, "a value in [0, 1]");
+  require(outlier_ratio >= 0.0 && outlier_ratio <= 1.0, "outlier_ratio", outlier_ratio,
+          "a value in [0, 1]");
   require(noise >= 0.0 && std::isfinite(noise), "noise", noise, "a finite value >= 0");
   require(extent > 0.0 && std::isfinite(extent), "extent", extent, "a finite value > 0");
   require(max_translation >= 0.0 && std::isfinite(max_translation), "max_translation",

@@ -14,30 +14,30 @@ namespace verifybench {
 /// (15 deg, 30 cm) used by PointDSC, TEASER++ and MAC evaluations.
 struct SuccessCriteria {
   double max_rotation_error_deg = 15.0;  ///< rotation error under this [deg]
-  double max_translation_error = 0.3;   ///< translation error under this [m]
-  bool requires_accepted = true;        ///< a rejected pair is never a success
+  double max_translation_error = 0.3;    ///< translation error under this [m]
+  bool requires_accepted = true;         ///< a rejected pair is never a success
 };
 
 struct TrialRecord {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
   std::string solver;
-  std::string dataset;                  ///< "synthetic" or the dump folder
+  std::string dataset;  ///< "synthetic" or the dump folder
   int dim = 3;
   int n = 0;
   std::optional<double> outlier_ratio;  ///< drawn ratio (synthetic); unset for real dumps
   std::optional<double> noise;          ///< synthetic noise sigma [m]
   int trial = 0;
-  std::uint64_t data_seed = 0;          ///< seed the set was drawn with (0 for dumps)
-  std::uint64_t solver_seed = 0;        ///< seed handed to the solver
-  std::string status;                   ///< ok | rejected | time_limit | error
-  std::string message;                  ///< error text, empty otherwise
+  std::uint64_t data_seed = 0;    ///< seed the set was drawn with (0 for dumps)
+  std::uint64_t solver_seed = 0;  ///< seed handed to the solver
+  std::string status;             ///< ok | rejected | time_limit | error
+  std::string message;            ///< error text, empty otherwise
   bool accepted = false;
   int inliers = 0;
-  std::optional<int> true_inliers;      ///< from ground-truth labels, when known
+  std::optional<int> true_inliers;  ///< from ground-truth labels, when known
   double inlier_precision = kNaN, inlier_recall = kNaN, inlier_f1 = kNaN;  ///< NaN -> null
-  double rotation_error_deg = kNaN, translation_error = kNaN;             ///< NaN -> null
-  std::optional<bool> success;          ///< unset when there is no ground-truth motion
+  double rotation_error_deg = kNaN, translation_error = kNaN;              ///< NaN -> null
+  std::optional<bool> success;  ///< unset when there is no ground-truth motion
   double time_ms = 0, graph_ms = 0, search_ms = 0, fit_ms = 0;
   long long branch_nodes = 0, iterations = 0, graph_edges = 0;
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
@@ -45,18 +45,18 @@ struct TrialRecord {
 
 /// One maximum clique search on one graph (DIMACS mode).
 struct CliqueRecord {
-  std::string graph;             ///< file path
+  std::string graph;  ///< file path
   std::string algorithm;
   int n = 0;
   long long edges = 0;
-  std::string status;            ///< ok (proven maximum) | time_limit | unproven (heuristic) | error
-  std::string message;           ///< error text
-  int omega = 0;                 ///< size of the clique found
+  std::string status;   ///< ok (proven maximum) | time_limit | unproven (heuristic) | error
+  std::string message;  ///< error text
+  int omega = 0;        ///< size of the clique found
   std::optional<int> known_omega;  ///< from MANIFEST.tsv beside the graph, when listed
-  double time_ms = 0;            ///< the search (the graph is read once, before, untimed)
+  double time_ms = 0;              ///< the search (the graph is read once, before, untimed)
   long long nodes = 0;
   int upper_bound = 0;
-  std::vector<int> clique;       ///< 1-based DIMACS ids, ascending
+  std::vector<int> clique;  ///< 1-based DIMACS ids, ascending
 };
 
 }  // namespace verifybench

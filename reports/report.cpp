@@ -152,27 +152,29 @@ json aggregate(const std::vector<TrialRecord>& rows) {
         succeeded += *r->success;
       }
     }
-    out.push_back({{"solver", head.solver},
-                   {"dataset", head.dataset},
-                   {"dim", head.dim},
-                   {"n", head.n},
-                   {"outlier_ratio", head.outlier_ratio ? json(*head.outlier_ratio) : json(nullptr)},
-                   {"noise", head.noise ? json(*head.noise) : json(nullptr)},
-                   {"trials", g.size()},
-                   {"errors", errors},
-                   {"time_limited", limited},
-                   {"accept_rate", double(accepted) / double(g.size())},
-                   {"success_rate", judged ? json(double(succeeded) / judged) : json(nullptr)},
-                   {"median_time_ms", median(times)},
-                   {"p90_time_ms", percentile_nearest_rank(times, 90.0)},
-                   {"median_inliers", median(inliers)},
-                   {"median_rotation_error_deg", median(rot)},
-                   {"median_translation_error", median(trans)}});
+    out.push_back(
+        {{"solver", head.solver},
+         {"dataset", head.dataset},
+         {"dim", head.dim},
+         {"n", head.n},
+         {"outlier_ratio", head.outlier_ratio ? json(*head.outlier_ratio) : json(nullptr)},
+         {"noise", head.noise ? json(*head.noise) : json(nullptr)},
+         {"trials", g.size()},
+         {"errors", errors},
+         {"time_limited", limited},
+         {"accept_rate", double(accepted) / double(g.size())},
+         {"success_rate", judged ? json(double(succeeded) / judged) : json(nullptr)},
+         {"median_time_ms", median(times)},
+         {"p90_time_ms", percentile_nearest_rank(times, 90.0)},
+         {"median_inliers", median(inliers)},
+         {"median_rotation_error_deg", median(rot)},
+         {"median_translation_error", median(trans)}});
   }
   return out;
 }
 
-json make_report(const json& context, const json& parameters, const std::vector<TrialRecord>& rows) {
+json make_report(const json& context, const json& parameters,
+                 const std::vector<TrialRecord>& rows) {
   json results = json::array();
   for (const auto& r : rows) results.push_back(to_json(r));
   return {{"schema_version", kReportSchemaVersion},
@@ -190,18 +192,24 @@ json correctness(const CliqueRecord& r) {
 }  // namespace
 
 json to_json(const CliqueRecord& r) {
-  json j = {{"graph", r.graph},       {"algorithm", r.algorithm},
-            {"n", r.n},               {"edges", r.edges},
-            {"status", r.status},     {"omega", r.omega},
+  json j = {{"graph", r.graph},
+            {"algorithm", r.algorithm},
+            {"n", r.n},
+            {"edges", r.edges},
+            {"status", r.status},
+            {"omega", r.omega},
             {"known_omega", r.known_omega ? json(*r.known_omega) : json(nullptr)},
             {"correct", correctness(r)},
-            {"time_ms", r.time_ms},   {"nodes", r.nodes},
-            {"upper_bound", r.upper_bound}, {"clique", r.clique}};
+            {"time_ms", r.time_ms},
+            {"nodes", r.nodes},
+            {"upper_bound", r.upper_bound},
+            {"clique", r.clique}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;
 }
 
-json make_report(const json& context, const json& parameters, const std::vector<CliqueRecord>& rows) {
+json make_report(const json& context, const json& parameters,
+                 const std::vector<CliqueRecord>& rows) {
   json results = json::array(), aggregates = json::array();
   std::vector<std::string> order;
   std::map<std::string, std::vector<const CliqueRecord*>> by_algorithm;
@@ -222,9 +230,13 @@ json make_report(const json& context, const json& parameters, const std::vector<
       total += r->time_ms;
       times.push_back(r->time_ms);
     }
-    aggregates.push_back({{"algorithm", name}, {"graphs", by_algorithm[name].size()},
-                          {"proven", proven}, {"correct", correct}, {"wrong", wrong},
-                          {"total_time_ms", total}, {"median_time_ms", median(times)}});
+    aggregates.push_back({{"algorithm", name},
+                          {"graphs", by_algorithm[name].size()},
+                          {"proven", proven},
+                          {"correct", correct},
+                          {"wrong", wrong},
+                          {"total_time_ms", total},
+                          {"median_time_ms", median(times)}});
   }
   return {{"schema_version", kReportSchemaVersion},
           {"context", context},

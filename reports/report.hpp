@@ -18,8 +18,8 @@ nlohmann::json make_context(const std::vector<std::string>& command_line, std::u
 nlohmann::json to_json(const TrialRecord& row);
 
 /// Groups rows by (solver, dataset, dim, n, outlier_ratio, noise) and summarises each group:
-/// trials, accept_rate, success_rate (null without ground truth), median and p90 time, median errors.
-/// Medians average the two middle values; p90 is the nearest-rank percentile.
+/// trials, accept_rate, success_rate (null without ground truth), median and p90 time, median
+/// errors. Medians average the two middle values; p90 is the nearest-rank percentile.
 nlohmann::json aggregate(const std::vector<TrialRecord>& rows);
 
 nlohmann::json make_report(const nlohmann::json& context, const nlohmann::json& parameters,

@@ -23,13 +23,15 @@ void for_each_bit(const Word* bits, int words, F&& f) {
   }
 }
 
-/// BBMC's bit-parallel greedy colouring of P (rows of `words` words from `rows`): stores the vertices
-/// of colour >= kmin in ord/col (room for |P|), returns how many; sets the classes used and |P|.
-/// U and Q are scratch bitsets of `words` words. Compiled for AVX-512, AVX2 and baseline x86-64.
-int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord, int* col,
-                  int* classes_used, int* coloured);
+/// BBMC's bit-parallel greedy colouring of P (rows of `words` words from `rows`): stores the
+/// vertices of colour >= kmin in ord/col (room for |P|), returns how many; sets the classes used
+/// and |P|. U and Q are scratch bitsets of `words` words. Compiled for AVX-512, AVX2 and baseline
+/// x86-64.
+int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
+                  int* col, int* classes_used, int* coloured);
 
-/// Limits shared by every search of one solve: a deadline and a node budget, checked every 64 nodes.
+/// Limits shared by every search of one solve: a deadline and a node budget, checked every 64
+/// nodes.
 struct SearchBudget {
   SteadyClock::time_point deadline;
   long long node_limit = 0;  ///< 0 = none
@@ -52,9 +54,16 @@ struct SearchBudget {
 class BranchAndBound {
  public:
   BranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget, bool recolour = false)
-      : g_(g), W_(g.words()), best_size_(incumbent), budget_(budget), recolour_(recolour),
-        levels_(static_cast<std::size_t>(g.size()) + 2), order_(levels_.size()),
-        colour_(levels_.size()), U_(static_cast<std::size_t>(W_)), Q_(static_cast<std::size_t>(W_)) {}
+      : g_(g),
+        W_(g.words()),
+        best_size_(incumbent),
+        budget_(budget),
+        recolour_(recolour),
+        levels_(static_cast<std::size_t>(g.size()) + 2),
+        order_(levels_.size()),
+        colour_(levels_.size()),
+        U_(static_cast<std::size_t>(W_)),
+        Q_(static_cast<std::size_t>(W_)) {}
 
   /// Searches the whole graph; best() is empty unless a clique larger than the incumbent was found.
   void run() {
@@ -66,7 +75,8 @@ class BranchAndBound {
 
   /// The subgraph induced by `vertices` (ascending ids), vertex k of the result being vertices[k].
   /// `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
-  static BitGraph induced(const BitGraph& g, const std::vector<int>& vertices, std::vector<Word>& mask);
+  static BitGraph induced(const BitGraph& g, const std::vector<int>& vertices,
+                          std::vector<Word>& mask);
 
  private:
   std::vector<Word>& level(int depth) {
@@ -87,8 +97,8 @@ class BranchAndBound {
         ord.resize(static_cast<std::size_t>(size));
         col.resize(static_cast<std::size_t>(size));
       }
-      return colour_kernel(P, W_, g_.row(0), kmin, U_.data(), Q_.data(), ord.data(), col.data(), &colours_,
-                           &coloured_);
+      return colour_kernel(P, W_, g_.row(0), kmin, U_.data(), Q_.data(), ord.data(), col.data(),
+                           &colours_, &coloured_);
     }
     Word* U = U_.data();
     Word* Q = Q_.data();
@@ -112,10 +122,12 @@ class BranchAndBound {
           if (k >= kmin && low_classes > 1 && renumber(v, low_classes)) continue;
           for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
           if (k <= low_classes) {
-            classes_[static_cast<std::size_t>(k - 1) * W_ + static_cast<std::size_t>(w)] |= Word{1} << b;
+            classes_[static_cast<std::size_t>(k - 1) * W_ + static_cast<std::size_t>(w)] |= Word{1}
+                                                                                            << b;
           }
           if (k >= kmin) {
-            if (static_cast<std::size_t>(count) == ord.size()) {  // grow on demand: deep levels hold few
+            if (static_cast<std::size_t>(count) ==
+                ord.size()) {  // grow on demand: deep levels hold few
               ord.resize(std::max<std::size_t>(64, 2 * ord.size()));
               col.resize(ord.size());
             }

@@ -109,7 +109,8 @@ int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U,
   return count;
 }
 
-BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vertices, std::vector<Word>& mask) {
+BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vertices,
+                                 std::vector<Word>& mask) {
   std::vector<MaskWord> words;
   for (int v : vertices) {
     const int w = v / kBits;
@@ -134,7 +135,8 @@ BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vert
 
 BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
   std::vector<int> index(static_cast<std::size_t>(g.size()), -1);
-  for (std::size_t k = 0; k < vertices.size(); ++k) index[static_cast<std::size_t>(vertices[k])] = static_cast<int>(k);
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+    index[static_cast<std::size_t>(vertices[k])] = static_cast<int>(k);
   BitGraph sub(static_cast<int>(vertices.size()));
   for (std::size_t k = 0; k < vertices.size(); ++k) {
     Word* out = sub.row(static_cast<int>(k));

@@ -58,7 +58,8 @@ std::optional<std::vector<int>> run_in_child(SteadyClock::time_point deadline, F
   std::vector<char> bytes;
   bool timed_out = false;
   for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - SteadyClock::now());
+    const auto left =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - SteadyClock::now());
     if (left.count() <= 0) {
       timed_out = true;
       break;
@@ -106,14 +107,18 @@ CliqueSearchResult peer_result(std::optional<std::vector<int>> clique, int n) {
 
 CliqueSearchResult run_cliquer(const BitGraph& g, const CliqueSearchParams& p) {
   static_assert(sizeof(unsigned long long) == sizeof(BitGraph::Word));
-  return peer_result(run_in_child(deadline_after(p.time_limit_s), [&] {
-    std::vector<int> out(static_cast<std::size_t>(g.size()));
-    const int size = vb_cliquer_max_clique(
-        g.size(), reinterpret_cast<const unsigned long long*>(g.row(0)), g.words(), out.data());
-    if (size < 0) ::_exit(2);
-    out.resize(static_cast<std::size_t>(size));
-    return out;
-  }), g.size());
+  return peer_result(run_in_child(deadline_after(p.time_limit_s),
+                                  [&] {
+                                    std::vector<int> out(static_cast<std::size_t>(g.size()));
+                                    const int size = vb_cliquer_max_clique(
+                                        g.size(),
+                                        reinterpret_cast<const unsigned long long*>(g.row(0)),
+                                        g.words(), out.data());
+                                    if (size < 0) ::_exit(2);
+                                    out.resize(static_cast<std::size_t>(size));
+                                    return out;
+                                  }),
+                     g.size());
 }
 
 std::vector<int> igraph_clique(const BitGraph& g) {
@@ -156,9 +161,11 @@ CliqueSearchResult run_igraph(const BitGraph& g, const CliqueSearchParams& p) {
 }  // namespace
 
 void register_clique_peers() {
-  CliqueAlgorithms::add({"cliquer", "peer: Debian libcliquer 1.21 (Ostergard), default options, via a C shim",
+  CliqueAlgorithms::add({"cliquer",
+                         "peer: Debian libcliquer 1.21 (Ostergard), default options, via a C shim",
                          true, run_cliquer});
-  CliqueAlgorithms::add({"igraph", "peer: Debian libigraph 0.10 igraph_largest_cliques", true, run_igraph});
+  CliqueAlgorithms::add(
+      {"igraph", "peer: Debian libigraph 0.10 igraph_largest_cliques", true, run_igraph});
 }
 
 }  // namespace verifybench

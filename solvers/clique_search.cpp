@@ -91,7 +91,6 @@ CoreDecomposition core_decomposition(const BitGraph& g) {
   return cd;
 }
 
-
 namespace {
 
 SearchBudget make_budget(const CliqueSearchParams& p) {
@@ -117,7 +116,8 @@ std::vector<int> search_ordered(const BitGraph& g, const std::vector<int>& verti
   return found;
 }
 
-CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudget& budget, int upper) {
+CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudget& budget,
+                          int upper) {
   CliqueSearchResult r;
   std::sort(clique.begin(), clique.end());
   r.clique = std::move(clique);
@@ -161,7 +161,8 @@ CliqueSearchResult run_bbmc_kcore(const BitGraph& g, const CliqueSearchParams& p
 class Decomposition {
  public:
   explicit Decomposition(const BitGraph& g)
-      : cd_(core_decomposition(g)), order_(cd_.order.rbegin(), cd_.order.rend()),
+      : cd_(core_decomposition(g)),
+        order_(cd_.order.rbegin(), cd_.order.rend()),
         // Relabel in min-width order (0 = removed last): v's later neighbours are the smaller ids.
         h_(detail::permuted(g, order_)) {}
 
@@ -188,7 +189,8 @@ class Decomposition {
     bb.run();
     if (bb.best().empty()) return {};
     std::vector<int> clique{order_[static_cast<std::size_t>(v)]};
-    for (int k : bb.best()) clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
+    for (int k : bb.best())
+      clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
     return clique;
   }
 
@@ -211,7 +213,8 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
   const int n = dec.size();
   const int upper = max_core(dec.cores()) + 1;
   std::vector<int> best = greedy_clique(g, dec.cores());
-  const int threads = std::max(1, p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = std::max(
+      1, p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency()));
 
   std::atomic<int> next{0}, best_size{static_cast<int>(best.size())};
   std::atomic<bool> stop{false};
@@ -309,16 +312,23 @@ void register_clique_peers();  // clique_peers.cpp: cliquer, igraph
 void register_clique_algorithms() {
   static std::once_flag once;
   std::call_once(once, [] {
-    CliqueAlgorithms::add({"bbmc", "BBMC: bitset branch and bound, greedy colouring bound, min-width order",
+    CliqueAlgorithms::add({"bbmc",
+                           "BBMC: bitset branch and bound, greedy colouring bound, min-width order",
                            true, run_bbmc<false>});
-    CliqueAlgorithms::add({"bbmcr", "BBMCR: BBMC with re-colouring (MCS Re-NUMBER) of branching candidates",
+    CliqueAlgorithms::add({"bbmcr",
+                           "BBMCR: BBMC with re-colouring (MCS Re-NUMBER) of branching candidates",
                            true, run_bbmc<true>});
-    CliqueAlgorithms::add({"bbmc-kcore", "BBMC after a greedy lower bound and k-core pruning (TEASER++/PMC-style pre-pruning)",
-                           true, run_bbmc_kcore});
-    CliqueAlgorithms::add({"bbmc-dec", "BBMC on each vertex's later neighbours in degeneracy order (PMC-style decomposition)",
-                           true, run_bbmc_dec});
-    CliqueAlgorithms::add({"greedy", "greedy clique by core number: a heuristic, no optimality proof",
-                           false, run_greedy});
+    CliqueAlgorithms::add(
+        {"bbmc-kcore",
+         "BBMC after a greedy lower bound and k-core pruning (TEASER++/PMC-style pre-pruning)",
+         true, run_bbmc_kcore});
+    CliqueAlgorithms::add(
+        {"bbmc-dec",
+         "BBMC on each vertex's later neighbours in degeneracy order (PMC-style decomposition)",
+         true, run_bbmc_dec});
+    CliqueAlgorithms::add({"greedy",
+                           "greedy clique by core number: a heuristic, no optimality proof", false,
+                           run_greedy});
     register_clique_peers();
   });
 }

@@ -52,12 +52,14 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
 void register_clique_solvers() {
   register_clique_algorithms();
   const CliqueAlgorithmInfo& default_algorithm = CliqueAlgorithms::get(kDefaultCliqueAlgorithm);
-  SolverRegistry::add({"clique",
-                       "CliReg: exact maximum clique (" + default_algorithm.name +
-                           ") on the pairwise-distance graph of Eq. (1), then least-squares fit",
-                       [run = default_algorithm.run] { return std::make_unique<CliqueSolver>(run); }});
+  SolverRegistry::add(
+      {"clique",
+       "CliReg: exact maximum clique (" + default_algorithm.name +
+           ") on the pairwise-distance graph of Eq. (1), then least-squares fit",
+       [run = default_algorithm.run] { return std::make_unique<CliqueSolver>(run); }});
   for (const CliqueAlgorithmInfo& info : CliqueAlgorithms::list()) {
-    SolverRegistry::add({"clique-" + info.name, "Eq. (1) graph, then " + info.description + ", then fit",
+    SolverRegistry::add({"clique-" + info.name,
+                         "Eq. (1) graph, then " + info.description + ", then fit",
                          [run = info.run] { return std::make_unique<CliqueSolver>(run); }});
   }
 }

@@ -1,5 +1,5 @@
-// `mac`: maximal cliques as hypotheses, as MAC (Zhang et al., CVPR 2023) does. Enumerate the maximal
-// cliques of the correspondence graph (Eq. 1) of at least mac_min_clique vertices
+// `mac`: maximal cliques as hypotheses, as MAC (Zhang et al., CVPR 2023) does. Enumerate the
+// maximal cliques of the correspondence graph (Eq. 1) of at least mac_min_clique vertices
 // (for_each_maximal_clique in max_clique.hpp), keep for every
 // vertex the largest maximal clique containing it (node-guided selection), fit each kept clique
 // (Umeyama) and score it by its consensus: the correspondences within inlier_threshold under its
@@ -23,33 +23,38 @@ class MacSolver : public SolverBase<MacSolver> {
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
     StopWatch graph_clock;
-    const BitGraph g = build_compatibility_graph(corr, GraphParams{params.eps, params.max_graph_bytes, params.threads});
+    const BitGraph g = build_compatibility_graph(
+        corr, GraphParams{params.eps, params.max_graph_bytes, params.threads});
     result.times.graph_ms = graph_clock.ms();
     result.counters.graph_edges = g.edge_count();
 
     StopWatch search_clock;
     const int n = g.size();
     // Node-guided selection: the largest maximal clique through each vertex.
-    std::vector<int> best_size(static_cast<std::size_t>(n), 0), best_id(static_cast<std::size_t>(n), -1);
+    std::vector<int> best_size(static_cast<std::size_t>(n), 0),
+        best_id(static_cast<std::size_t>(n), -1);
     std::vector<std::vector<int>> kept;
     MaximalCliqueParams mp;
     mp.min_size = params.mac_min_clique;
     mp.max_cliques = params.mac_max_cliques;
     mp.time_limit_s = params.time_limit_s - graph_clock.ms() / 1000.0;
     long long nodes = 0;
-    const bool complete = for_each_maximal_clique(g, mp, [&](const std::vector<int>& clique) {
-      const int size = static_cast<int>(clique.size());
-      bool improves = false;
-      for (int u : clique) improves |= size > best_size[static_cast<std::size_t>(u)];
-      if (!improves) return;
-      for (int u : clique) {
-        if (size > best_size[static_cast<std::size_t>(u)]) {
-          best_size[static_cast<std::size_t>(u)] = size;
-          best_id[static_cast<std::size_t>(u)] = static_cast<int>(kept.size());
-        }
-      }
-      kept.push_back(clique);
-    }, &nodes);
+    const bool complete = for_each_maximal_clique(
+        g, mp,
+        [&](const std::vector<int>& clique) {
+          const int size = static_cast<int>(clique.size());
+          bool improves = false;
+          for (int u : clique) improves |= size > best_size[static_cast<std::size_t>(u)];
+          if (!improves) return;
+          for (int u : clique) {
+            if (size > best_size[static_cast<std::size_t>(u)]) {
+              best_size[static_cast<std::size_t>(u)] = size;
+              best_id[static_cast<std::size_t>(u)] = static_cast<int>(kept.size());
+            }
+          }
+          kept.push_back(clique);
+        },
+        &nodes);
     result.counters.branch_nodes = nodes;
     std::vector<int> ids(best_id);
     std::sort(ids.begin(), ids.end());
@@ -79,10 +84,11 @@ class MacSolver : public SolverBase<MacSolver> {
 }  // namespace
 
 void register_mac_solver() {
-  SolverRegistry::add({"mac",
-                       "MAC-style: maximal cliques (Bron-Kerbosch, node-guided selection) as hypotheses, "
-                       "best consensus wins, least-squares refit",
-                       [] { return std::make_unique<MacSolver>(); }});
+  SolverRegistry::add(
+      {"mac",
+       "MAC-style: maximal cliques (Bron-Kerbosch, node-guided selection) as hypotheses, "
+       "best consensus wins, least-squares refit",
+       [] { return std::make_unique<MacSolver>(); }});
 }
 
 }  // namespace verifybench

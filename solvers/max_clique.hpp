@@ -22,7 +22,8 @@ namespace verifybench {
 struct CliqueSearchParams {
   double time_limit_s = std::numeric_limits<double>::infinity();  ///< wall-clock limit
   long long node_limit = 0;  ///< branch nodes before giving up; 0 = no limit (per thread)
-  int threads = 1;           ///< bbmc-dec: worker threads (0 = all cores); the clique is the same for any count
+  int threads =
+      1;  ///< bbmc-dec: worker threads (0 = all cores); the clique is the same for any count
 };
 
 struct CliqueSearchResult {
@@ -33,7 +34,8 @@ struct CliqueSearchResult {
   int upper_bound = 0;      ///< an upper bound on the clique number (degeneracy + 1 at least)
 };
 
-using CliqueAlgorithm = std::function<CliqueSearchResult(const BitGraph&, const CliqueSearchParams&)>;
+using CliqueAlgorithm =
+    std::function<CliqueSearchResult(const BitGraph&, const CliqueSearchParams&)>;
 
 struct CliqueAlgorithmInfo {
   std::string name;
@@ -46,7 +48,7 @@ class CliqueAlgorithms {
  public:
   static void add(CliqueAlgorithmInfo info);  ///< throws std::logic_error on a duplicate name
   static const CliqueAlgorithmInfo& get(const std::string& name);  ///< throws std::invalid_argument
-  static std::vector<CliqueAlgorithmInfo> list();  ///< sorted by name
+  static std::vector<CliqueAlgorithmInfo> list();                  ///< sorted by name
 };
 
 /// Registers bbmc, bbmcr, bbmc-kcore, bbmc-dec, greedy and the peers (idempotent).
@@ -57,14 +59,14 @@ inline constexpr const char* kDefaultCliqueAlgorithm = "bbmc";
 CliqueSearchResult max_clique(const BitGraph& g, const CliqueSearchParams& params = {});
 
 struct MaximalCliqueParams {
-  int min_size = 1;                                                ///< report cliques this large or larger
-  long long max_cliques = 0;                                       ///< stop after this many; 0 = all
+  int min_size = 1;           ///< report cliques this large or larger
+  long long max_cliques = 0;  ///< stop after this many; 0 = all
   double time_limit_s = std::numeric_limits<double>::infinity();  ///< wall-clock limit
 };
 
 /// Calls report(clique) once for every maximal clique of at least min_size vertices (original ids,
-/// its first vertex in degeneracy order first). Returns false when a limit cut the enumeration short.
-/// `nodes`, when given, receives the Bron-Kerbosch nodes expanded.
+/// its first vertex in degeneracy order first). Returns false when a limit cut the enumeration
+/// short. `nodes`, when given, receives the Bron-Kerbosch nodes expanded.
 bool for_each_maximal_clique(const BitGraph& g, const MaximalCliqueParams& params,
                              const std::function<void(const std::vector<int>&)>& report,
                              long long* nodes = nullptr);

@@ -1,6 +1,6 @@
-// Maximal clique enumeration: Bron-Kerbosch with Tomita pivoting, run per vertex in degeneracy order
-// on the compact subgraph of its neighbours (Eppstein, Loffler & Strash 2010), so each maximal clique
-// is reported once, from its first vertex in that order.
+// Maximal clique enumeration: Bron-Kerbosch with Tomita pivoting, run per vertex in degeneracy
+// order on the compact subgraph of its neighbours (Eppstein, Loffler & Strash 2010), so each
+// maximal clique is reported once, from its first vertex in that order.
 #include <functional>
 
 #include "solvers/bbmc.hpp"
@@ -52,7 +52,8 @@ class MaximalCliques {
       detail::for_each_bit(S->data(), W_, [&](int u) {
         int c = 0;
         const Word* N = g_.row(u);
-        for (int w = 0; w < W_; ++w) c += __builtin_popcountll(L.P[static_cast<std::size_t>(w)] & N[w]);
+        for (int w = 0; w < W_; ++w)
+          c += __builtin_popcountll(L.P[static_cast<std::size_t>(w)] & N[w]);
         if (c > best) best = c, pivot = u;
       });
     }
@@ -60,9 +61,11 @@ class MaximalCliques {
     std::vector<int> branch;
     const Word* Npivot = g_.row(pivot);
     for (int w = 0; w < W_; ++w) {
-      for (Word x = P[static_cast<std::size_t>(w)] & ~Npivot[w]; x; x &= x - 1) branch.push_back(w * kBits + lowest_bit(x));
+      for (Word x = P[static_cast<std::size_t>(w)] & ~Npivot[w]; x; x &= x - 1)
+        branch.push_back(w * kBits + lowest_bit(x));
     }
-    if (levels_.size() < static_cast<std::size_t>(depth) + 2) levels_.resize(static_cast<std::size_t>(depth) + 2);
+    if (levels_.size() < static_cast<std::size_t>(depth) + 2)
+      levels_.resize(static_cast<std::size_t>(depth) + 2);
     for (int v : branch) {
       const Word* N = g_.row(v);
       Level& next = levels_[static_cast<std::size_t>(depth) + 1];
@@ -93,7 +96,8 @@ class MaximalCliques {
 }  // namespace
 
 bool for_each_maximal_clique(const BitGraph& g, const MaximalCliqueParams& params,
-                             const std::function<void(const std::vector<int>&)>& report, long long* nodes) {
+                             const std::function<void(const std::vector<int>&)>& report,
+                             long long* nodes) {
   detail::SearchBudget budget;
   budget.deadline = deadline_after(params.time_limit_s);
   const int n = g.size();
@@ -114,7 +118,8 @@ bool for_each_maximal_clique(const BitGraph& g, const MaximalCliqueParams& param
     }
     MaximalCliques enumerate(local, params.min_size, budget, [&](const std::vector<int>& R) {
       clique.assign(1, cd.order[static_cast<std::size_t>(v)]);
-      for (int k : R) clique.push_back(cd.order[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
+      for (int k : R)
+        clique.push_back(cd.order[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
       report(clique);
       if (params.max_cliques > 0 && ++found >= params.max_cliques) capped = true;
       return !capped;

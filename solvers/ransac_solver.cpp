@@ -76,8 +76,10 @@ class RansacSolver : public SolverBase<RansacSolver> {
       if (params.ransac_adaptive) {
         const double w = double(best_count) / n;
         const double miss = 1.0 - std::pow(w, Dim);
-        const double k = miss <= 0.0 ? 0.0 : std::log(1.0 - params.ransac_confidence) / std::log(miss);
-        needed = std::min<long long>(params.ransac_iterations, static_cast<long long>(std::ceil(k)));
+        const double k =
+            miss <= 0.0 ? 0.0 : std::log(1.0 - params.ransac_confidence) / std::log(miss);
+        needed =
+            std::min<long long>(params.ransac_iterations, static_cast<long long>(std::ceil(k)));
       }
     }
     result.times.search_ms = search_clock.ms();

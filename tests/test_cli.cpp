@@ -76,8 +76,9 @@ TEST(Cli, ListAndHelp) {
 TEST(Cli, SweepWritesAParsableReport) {
   const fs::path out = fs::temp_directory_path() / "vb_cli_sweep.json";
   fs::remove(out);
-  const CliRun r = run("sweep --dim 2,3 --n 60 --outliers 0.5,0.8 --trials 2 --seed 9 --quiet --out " +
-                    out.string());
+  const CliRun r =
+      run("sweep --dim 2,3 --n 60 --outliers 0.5,0.8 --trials 2 --seed 9 --quiet --out " +
+          out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(out);
   const auto doc = nlohmann::json::parse(in);
@@ -95,8 +96,8 @@ TEST(Cli, DimacsModeReportsOmegaAndRejectsBadInput) {
   std::ofstream(dir / "MANIFEST.tsv") << "instance\tn\tm\tomega\nk4\t5\t7\t4\n";
   std::ofstream(dir / "bad.clq") << "p edge 5 1\ne 1 9\n";
   const fs::path out = dir / "r.json";
-  const CliRun ok = run("dimacs " + (dir / "k4.clq").string() + " --algorithms bbmc,cliquer,igraph --quiet --out " +
-                        out.string());
+  const CliRun ok = run("dimacs " + (dir / "k4.clq").string() +
+                        " --algorithms bbmc,cliquer,igraph --quiet --out " + out.string());
   ASSERT_EQ(ok.code, 0) << ok.output;
   std::ifstream in(out);
   const auto doc = nlohmann::json::parse(in);
@@ -116,10 +117,13 @@ TEST(Cli, DimacsModeReportsOmegaAndRejectsBadInput) {
 
 TEST(Cli, GraphBeyondTheMemoryCapIsAnErrorNotACrash) {
   const fs::path out = fs::temp_directory_path() / "vb_cli_cap.json";
-  const CliRun r = run("sweep --n 20000 --outliers 0.5 --trials 1 --max-graph-mb 10 --solvers clique --quiet --out " +
-                       out.string());
+  const CliRun r =
+      run("sweep --n 20000 --outliers 0.5 --trials 1 --max-graph-mb 10 --solvers clique --quiet "
+          "--out " +
+          out.string());
   EXPECT_EQ(r.code, 1) << r.output;
-  EXPECT_NE(r.output.find("20000 vertices needs 47 MiB of adjacency rows, over the cap of 10 MiB"), std::string::npos)
+  EXPECT_NE(r.output.find("20000 vertices needs 47 MiB of adjacency rows, over the cap of 10 MiB"),
+            std::string::npos)
       << r.output;
   std::ifstream in(out);
   const auto doc = nlohmann::json::parse(in);  // the report is complete and says why
@@ -128,9 +132,11 @@ TEST(Cli, GraphBeyondTheMemoryCapIsAnErrorNotACrash) {
 }
 
 TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
-  const CliRun r = run("sweep --n 20 --outliers 0.5 --trials 1 --quiet --out /nonexistent/dir/r.json");
+  const CliRun r =
+      run("sweep --n 20 --outliers 0.5 --trials 1 --quiet --out /nonexistent/dir/r.json");
   EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.output.find("cannot write report /nonexistent/dir/r.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("cannot write report /nonexistent/dir/r.json"), std::string::npos)
+      << r.output;
 }
 
 }  // namespace

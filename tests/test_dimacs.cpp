@@ -29,7 +29,8 @@ std::string error_of(const std::string& path) {
 }
 
 TEST(Dimacs, ReadsEdgesToleratingDuplicatesAndSelfLoops) {
-  const auto path = write_temp("vb_ok.clq", "c comment\np edge 4 5\ne 1 2\ne 2 1\ne 2 3\ne 3 3\ne 1 3\n");
+  const auto path =
+      write_temp("vb_ok.clq", "c comment\np edge 4 5\ne 1 2\ne 2 1\ne 2 3\ne 3 3\ne 1 3\n");
   const BitGraph g = read_dimacs(path);
   EXPECT_EQ(g.size(), 4);
   EXPECT_EQ(g.edge_count(), 3);
@@ -39,19 +40,27 @@ TEST(Dimacs, ReadsEdgesToleratingDuplicatesAndSelfLoops) {
 }
 
 TEST(Dimacs, ClearErrorsOnMalformedInput) {
-  EXPECT_NE(error_of(write_temp("vb_b1.clq", "e 1 2\n")).find("vb_b1.clq:1: edge before"), std::string::npos);
-  EXPECT_NE(error_of(write_temp("vb_b2.clq", "p edge 3 1\ne 1 4\n")).find("vb_b2.clq:2: vertex '4' is outside 1..3"),
+  EXPECT_NE(error_of(write_temp("vb_b1.clq", "e 1 2\n")).find("vb_b1.clq:1: edge before"),
             std::string::npos);
-  EXPECT_NE(error_of(write_temp("vb_b3.clq", "p edge 3 1\ne 1 x\n")).find("vb_b3.clq:2: field v: 'x' is not an integer"),
+  EXPECT_NE(error_of(write_temp("vb_b2.clq", "p edge 3 1\ne 1 4\n"))
+                .find("vb_b2.clq:2: vertex '4' is outside 1..3"),
             std::string::npos);
-  EXPECT_NE(error_of(write_temp("vb_b4.clq", "p edge 3 1\nq 1 2\n")).find("unknown line type 'q'"), std::string::npos);
-  EXPECT_NE(error_of(write_temp("vb_b5.clq", "c nothing\n")).find("no 'p edge N M' line"), std::string::npos);
-  EXPECT_NE(error_of(write_temp("vb_b6.clq", "p edge 3 1\ne 0 1\n")).find("vertex '0'"), std::string::npos);
+  EXPECT_NE(error_of(write_temp("vb_b3.clq", "p edge 3 1\ne 1 x\n"))
+                .find("vb_b3.clq:2: field v: 'x' is not an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of(write_temp("vb_b4.clq", "p edge 3 1\nq 1 2\n")).find("unknown line type 'q'"),
+            std::string::npos);
+  EXPECT_NE(error_of(write_temp("vb_b5.clq", "c nothing\n")).find("no 'p edge N M' line"),
+            std::string::npos);
+  EXPECT_NE(error_of(write_temp("vb_b6.clq", "p edge 3 1\ne 0 1\n")).find("vertex '0'"),
+            std::string::npos);
   EXPECT_NE(error_of("/nonexistent.clq").find("cannot open"), std::string::npos);
-  EXPECT_THROW(read_dimacs(write_temp("vb_b7.clq", "p edge 100000 0\n"), 1 << 20), InputError);  // over the cap
+  EXPECT_THROW(read_dimacs(write_temp("vb_b7.clq", "p edge 100000 0\n"), 1 << 20),
+               InputError);  // over the cap
 }
 
-// Deterministic budget: a node limit (not a clock), so the same instances are solved on any machine.
+// Deterministic budget: a node limit (not a clock), so the same instances are solved on any
+// machine.
 constexpr long long kNodeLimit = 3'000'000;
 
 TEST(Dimacs, ExactAlgorithmsMatchKnownCliqueNumbers) {

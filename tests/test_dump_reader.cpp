@@ -16,13 +16,16 @@ namespace fs = std::filesystem;
 class DumpReader : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("vb_dump_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ =
+        fs::temp_directory_path() /
+        ("vb_dump_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }
-  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+  }
   std::string error() {
     try {
       read_text_dump(dir_.string());
@@ -64,7 +67,8 @@ TEST_F(DumpReader, NamesFileLineAndFieldOfABadNumber) {
 
 TEST_F(DumpReader, RejectsNonFiniteValues) {
   write("corr.txt", "0 0 0 1 0 0\n0 0 nan 1 0 0\n");
-  EXPECT_NE(error().find("corr.txt:2: field column 3: 'nan' is not finite"), std::string::npos) << error();
+  EXPECT_NE(error().find("corr.txt:2: field column 3: 'nan' is not finite"), std::string::npos)
+      << error();
   write("corr.txt", "0 0 0 1 0 inf\n");
   EXPECT_NE(error().find("corr.txt:1"), std::string::npos);
 }
@@ -73,7 +77,8 @@ TEST_F(DumpReader, RejectsRaggedRowsAndWrongWidths) {
   write("corr.txt", "0 0 0 1 0 0\n0 0 0 1 0\n");
   EXPECT_NE(error().find("corr.txt:2: expected 6 fields"), std::string::npos) << error();
   write("corr.txt", "0 0 0\n");
-  EXPECT_NE(error().find("expected 6 fields (xs ys zs xt yt zt) or 4"), std::string::npos) << error();
+  EXPECT_NE(error().find("expected 6 fields (xs ys zs xt yt zt) or 4"), std::string::npos)
+      << error();
 }
 
 TEST_F(DumpReader, RejectsEmptyAndMissingFiles) {

@@ -42,18 +42,21 @@ TEST(CompatibilityGraph, SameGraphForAnySizeAndThreadCount) {
     p.outlier_ratio = 0.7;
     p.seed = static_cast<std::uint64_t>(n);
     const auto set = make_synthetic<3>(p);
-    const BitGraph one = build_compatibility_graph(set.corr, GraphParams{0.5, std::size_t{1} << 30, 1});
+    const BitGraph one =
+        build_compatibility_graph(set.corr, GraphParams{0.5, std::size_t{1} << 30, 1});
     for (int threads : {2, 3, 0}) {
       const BitGraph many =
           build_compatibility_graph(set.corr, GraphParams{0.5, std::size_t{1} << 30, threads});
       for (int i = 0; i < n; ++i)
-        for (int w = 0; w < one.words(); ++w) ASSERT_EQ(one.row(i)[w], many.row(i)[w]) << n << " " << threads;
+        for (int w = 0; w < one.words(); ++w)
+          ASSERT_EQ(one.row(i)[w], many.row(i)[w]) << n << " " << threads;
     }
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
         const double dm = (set.corr.source.col(i) - set.corr.source.col(j)).norm();
         const double dq = (set.corr.target.col(i) - set.corr.target.col(j)).norm();
-        ASSERT_EQ(one.adjacent(i, j), i != j && std::abs(dm - dq) < 0.5) << n << ": " << i << "," << j;
+        ASSERT_EQ(one.adjacent(i, j), i != j && std::abs(dm - dq) < 0.5)
+            << n << ": " << i << "," << j;
       }
     }
   }

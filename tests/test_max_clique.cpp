@@ -19,7 +19,8 @@ std::vector<std::string> exact_algorithms() {
   return names;
 }
 
-CliqueSearchResult solve(const std::string& algorithm, const BitGraph& g, CliqueSearchParams p = {}) {
+CliqueSearchResult solve(const std::string& algorithm, const BitGraph& g,
+                         CliqueSearchParams p = {}) {
   return CliqueAlgorithms::get(algorithm).run(g, p);
 }
 
@@ -49,7 +50,7 @@ TEST_P(Exact, MatchesBruteForceOnRandomGraphs) {
 TEST_P(Exact, EdgeCaseGraphs) {
   EXPECT_EQ(solve(GetParam(), BitGraph(10)).clique.size(), 1u);  // no edges
   EXPECT_TRUE(solve(GetParam(), BitGraph(0)).clique.empty());    // no vertices
-  for (int n : {1, 2, 63, 64, 65, 130}) {                         // complete graphs
+  for (int n : {1, 2, 63, 64, 65, 130}) {                        // complete graphs
     BitGraph g(n);
     for (int u = 0; u < n; ++u)
       for (int v = u + 1; v < n; ++v) g.add_edge(u, v);

@@ -12,7 +12,8 @@ TEST(Metrics, RotationErrorOfKnownAngles3D) {
   for (double deg : {0.0, 1.0, 30.0, 90.0, 179.0, 180.0}) {
     Rigid<3> a = Rigid<3>::Identity(), b = Rigid<3>::Identity();
     a.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-    b.linear() = Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d(-1, 0, 2).normalized()) * a.linear();
+    b.linear() =
+        Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d(-1, 0, 2).normalized()) * a.linear();
     EXPECT_NEAR(rotation_error_deg<3>(b, a), deg, 1e-5);
   }
 }

@@ -39,10 +39,26 @@ TEST(Report, CarriesTheSchemaFields) {
   }
   EXPECT_EQ(doc["context"]["seed"], 42);
   const json& r = doc.at("results").at(0);
-  for (const char* key : {"solver", "dim", "n", "outlier_ratio", "noise", "status", "accepted",
-                          "inliers", "inlier_precision", "inlier_recall", "inlier_f1",
-                          "rotation_error_deg", "translation_error", "success", "time_ms",
-                          "graph_ms", "search_ms", "fit_ms", "data_seed", "solver_seed"}) {
+  for (const char* key : {"solver",
+                          "dim",
+                          "n",
+                          "outlier_ratio",
+                          "noise",
+                          "status",
+                          "accepted",
+                          "inliers",
+                          "inlier_precision",
+                          "inlier_recall",
+                          "inlier_f1",
+                          "rotation_error_deg",
+                          "translation_error",
+                          "success",
+                          "time_ms",
+                          "graph_ms",
+                          "search_ms",
+                          "fit_ms",
+                          "data_seed",
+                          "solver_seed"}) {
     EXPECT_TRUE(r.contains(key)) << key;
   }
   EXPECT_TRUE(r["inlier_precision"].is_null());  // NaN is written as null
@@ -82,7 +98,8 @@ TEST(Report, WritesAtomicallyAndParsesBack) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path file = dir / "r.json";
-  const json doc = make_report(make_context({"x"}, 1), json::object(), {row("clique", 0.5, 1, true)});
+  const json doc =
+      make_report(make_context({"x"}, 1), json::object(), {row("clique", 0.5, 1, true)});
   write_json_atomic(file.string(), doc);
   std::ifstream in(file);
   EXPECT_EQ(json::parse(in), doc);

@@ -11,8 +11,9 @@ namespace verifybench {
 namespace {
 
 template <int Dim>
-Correspondences<Dim> apply(const Rigid<Dim>& T, const Eigen::Matrix<double, Dim, Eigen::Dynamic>& src,
-                           double noise, std::mt19937_64& rng) {
+Correspondences<Dim> apply(const Rigid<Dim>& T,
+                           const Eigen::Matrix<double, Dim, Eigen::Dynamic>& src, double noise,
+                           std::mt19937_64& rng) {
   std::normal_distribution<double> g(0.0, noise);
   Correspondences<Dim> c;
   c.source = src;
@@ -52,7 +53,8 @@ TYPED_TEST(RigidFit, ReverseFitIsTheInverse) {
   constexpr int Dim = TypeParam::value;
   std::mt19937_64 rng(Dim * 100 + 2);
   const Rigid<Dim> T = test::random_rigid<Dim>(rng);
-  const auto c = apply<Dim>(T, Eigen::Matrix<double, Dim, Eigen::Dynamic>::Random(Dim, 50), 0.05, rng);
+  const auto c =
+      apply<Dim>(T, Eigen::Matrix<double, Dim, Eigen::Dynamic>::Random(Dim, 50), 0.05, rng);
   Correspondences<Dim> reversed{c.target, c.source};
   const auto forward = fit_rigid(c);
   const auto backward = fit_rigid(reversed);
@@ -82,7 +84,8 @@ TYPED_TEST(RigidFit, MirroredDataStillGivesAProperRotation) {
         P.linear() = Eigen::Rotation2Dd(1e-3 * (k - 100)).toRotationMatrix() * est->linear();
       } else {
         const Eigen::Vector3d axis = Eigen::Vector3d::Random().normalized();
-        P.linear() = Eigen::AngleAxisd(1e-3 * (k % 20 + 1), axis).toRotationMatrix() * est->linear();
+        P.linear() =
+            Eigen::AngleAxisd(1e-3 * (k % 20 + 1), axis).toRotationMatrix() * est->linear();
       }
       const auto mean_s = c.source.rowwise().mean();
       const auto mean_t = c.target.rowwise().mean();
@@ -101,8 +104,9 @@ TEST(RigidFit2D, GlobalOptimumAgainstAngleGridSearch) {
     Correspondences<2> c;
     c.source = Eigen::Matrix2Xd::Random(2, 8) * 3.0;
     c.target.resize(2, 8);
-    for (int i = 0; i < 8; ++i) c.target.col(i) = Eigen::Vector2d(g(rng), g(rng)) * 3.0;  // unrelated
-    if (rep % 2) c.target.row(1) = -c.source.row(1);  // exact mirror image
+    for (int i = 0; i < 8; ++i)
+      c.target.col(i) = Eigen::Vector2d(g(rng), g(rng)) * 3.0;  // unrelated
+    if (rep % 2) c.target.row(1) = -c.source.row(1);            // exact mirror image
     const auto est = fit_rigid(c);
     ASSERT_TRUE(est.has_value());
     double grid_best = 1e300;
@@ -134,7 +138,7 @@ TEST(RigidFit3D, CollinearOrTooFewPointsAreRefused) {
   c.source = Eigen::Matrix3Xd(3, 4);
   for (int i = 0; i < 4; ++i) c.source.col(i) = Eigen::Vector3d(i, i, i);
   c.target = c.source;
-  EXPECT_FALSE(fit_rigid(c).has_value());                  // collinear: rotation about the line free
+  EXPECT_FALSE(fit_rigid(c).has_value());  // collinear: rotation about the line free
   EXPECT_FALSE(fit_rigid(c, std::vector<int>{0}).has_value());  // one point
   EXPECT_FALSE(fit_rigid(c, std::vector<int>{}).has_value());
 }

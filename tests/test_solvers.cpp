@@ -71,14 +71,18 @@ void expect_recovery(const std::string& name) {
 
 TEST_P(Recovers, DrawnMotionAtHalfOutliers) {
   const auto& [name, dim] = GetParam();
-  if (dim == 2) expect_recovery<2>(name);
-  else expect_recovery<3>(name);
+  if (dim == 2)
+    expect_recovery<2>(name);
+  else
+    expect_recovery<3>(name);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllSolvers, Recovers,
-                         ::testing::Combine(::testing::Values("clique", "ransac", "mac"), ::testing::Values(2, 3)),
+                         ::testing::Combine(::testing::Values("clique", "ransac", "mac"),
+                                            ::testing::Values(2, 3)),
                          [](const auto& info) {
-                           return std::get<0>(info.param) + "_" + std::to_string(std::get<1>(info.param)) + "D";
+                           return std::get<0>(info.param) + "_" +
+                                  std::to_string(std::get<1>(info.param)) + "D";
                          });
 
 TEST_F(Registered, RansacIsReproducibleForASeed) {

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the tests: seeded random graphs and transforms, and a brute-force clique oracle.
+// Helpers shared by the tests: seeded random graphs and transforms, and a brute-force clique
+// oracle.
 #include <random>
 #include <vector>
 
