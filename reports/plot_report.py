@@ -66,6 +66,12 @@ def title(doc, dim):
 def plot(doc, points, out_dir, stem):
     by_dim = curves(points)
     dims = sorted(by_dim)
+    # One colour per solver, one marker per n, so that curves stay apart when there are many.
+    solvers = sorted({a["solver"] for a in points})
+    sizes = sorted({a["n"] for a in points})
+    cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colour = {s: cycle[i % len(cycle)] for i, s in enumerate(solvers)}
+    marker = {n: "osD^vP*X"[i % 8] for i, n in enumerate(sizes)}
     paths = []
     for kind in ("success", "time"):
         fig, axes = plt.subplots(1, len(dims), figsize=(7.5 * len(dims), 4.8), squeeze=False)
@@ -73,12 +79,13 @@ def plot(doc, points, out_dir, stem):
             for (solver, n), series in sorted(by_dim[dim].items()):
                 x = [r for r, _ in series]
                 label = f"{solver} (n={n})"
+                style = {"color": colour[solver], "marker": marker[n]}
                 if kind == "success":
-                    ax.plot(x, [a["success_rate"] for _, a in series], marker="o", label=label)
+                    ax.plot(x, [a["success_rate"] for _, a in series], label=label, **style)
                 else:
-                    line, = ax.plot(x, [a["median_time_ms"] for _, a in series], marker="o", label=label)
+                    ax.plot(x, [a["median_time_ms"] for _, a in series], label=label, **style)
                     ax.plot(x, [a["p90_time_ms"] for _, a in series], linestyle="--",
-                            color=line.get_color(), alpha=0.6)
+                            color=colour[solver], alpha=0.5)
             ax.set_xlabel("outlier ratio")
             if kind == "success":
                 ax.set_ylabel("success rate")
