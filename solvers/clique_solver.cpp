@@ -1,8 +1,8 @@
 // `clique`: the CliReg verifier. Correspondence graph (Eq. 1) -> maximum clique C* ->
 // least-squares rigid fit on C* -> accept when |C*| reaches the threshold. One solver per clique
 // algorithm of max_clique.hpp (`clique-<algorithm>`), and `clique` for the default one.
-#include "core/compatibility_graph.hpp"
 #include "core/rigid_fit.hpp"
+#include "solvers/graph_stage.hpp"
 #include "solvers/max_clique.hpp"
 #include "solvers/registry.hpp"
 #include "solvers/timer.hpp"
@@ -18,17 +18,11 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
-    StopWatch total;
-
-    StopWatch graph_clock;
-    const BitGraph graph = build_compatibility_graph(
-        corr, GraphParams{params.eps, params.max_graph_bytes, params.threads});
-    result.times.graph_ms = graph_clock.ms();
-    result.counters.graph_edges = graph.edge_count();
+    const BitGraph graph = build_graph_stage(corr, params, result);
 
     StopWatch search_clock;
     CliqueSearchParams search;
-    search.time_limit_s = params.time_limit_s - total.ms() / 1000.0;
+    search.time_limit_s = params.time_limit_s - result.times.graph_ms / 1000.0;
     search.threads = params.threads;
     const CliqueSearchResult clique = algorithm_(graph, search);
     result.times.search_ms = search_clock.ms();

@@ -6,9 +6,9 @@
 // motion. The best hypothesis wins; its consensus set is refit by least squares.
 #include <algorithm>
 
-#include "core/compatibility_graph.hpp"
 #include "core/rigid_fit.hpp"
 #include "solvers/consensus.hpp"
+#include "solvers/graph_stage.hpp"
 #include "solvers/max_clique.hpp"
 #include "solvers/registry.hpp"
 #include "solvers/timer.hpp"
@@ -22,11 +22,7 @@ class MacSolver : public SolverBase<MacSolver> {
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
-    StopWatch graph_clock;
-    const BitGraph g = build_compatibility_graph(
-        corr, GraphParams{params.eps, params.max_graph_bytes, params.threads});
-    result.times.graph_ms = graph_clock.ms();
-    result.counters.graph_edges = g.edge_count();
+    const BitGraph g = build_graph_stage(corr, params, result);
 
     StopWatch search_clock;
     const int n = g.size();
@@ -37,7 +33,7 @@ class MacSolver : public SolverBase<MacSolver> {
     MaximalCliqueParams mp;
     mp.min_size = params.mac_min_clique;
     mp.max_cliques = params.mac_max_cliques;
-    mp.time_limit_s = params.time_limit_s - graph_clock.ms() / 1000.0;
+    mp.time_limit_s = params.time_limit_s - result.times.graph_ms / 1000.0;
     long long nodes = 0;
     const bool complete = for_each_maximal_clique(
         g, mp,
