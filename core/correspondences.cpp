@@ -1,5 +1,6 @@
 #include "core/correspondences.hpp"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -26,6 +27,27 @@ void validate(const Correspondences<Dim>& corr) {
           throw std::invalid_argument(msg.str());
         }
       }
+    }
+  }
+  if (!corr.score.empty() && static_cast<Eigen::Index>(corr.score.size()) != corr.size()) {
+    std::ostringstream msg;
+    msg << "score count " << corr.score.size() << " does not match correspondence count "
+        << corr.size();
+    throw std::invalid_argument(msg.str());
+  }
+  for (std::size_t i = 0; i < corr.score.size(); ++i) {
+    if (!std::isfinite(corr.score[i])) {
+      std::ostringstream msg;
+      msg << "non-finite score of correspondence " << i << ": " << corr.score[i];
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  if (corr.prior) {
+    const auto& P = corr.prior->covariance;
+    const bool finite = P.allFinite() && corr.prior->T_target_source.matrix().allFinite();
+    if (!finite || !P.isApprox(P.transpose(), 1e-9) || P.llt().info() != Eigen::Success) {
+      throw std::invalid_argument(
+          "pose prior: covariance must be finite, symmetric and positive definite");
     }
   }
 }

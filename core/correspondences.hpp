@@ -12,11 +12,31 @@ namespace verifybench {
 template <int Dim>
 using Rigid = Eigen::Transform<double, Dim, Eigen::Isometry>;
 
+/// Degrees of freedom of SE(Dim): 3 in 2D, 6 in 3D.
+template <int Dim>
+constexpr int kPoseDof = Dim == 2 ? 3 : 6;
+
+/// A guess of the motion and its uncertainty, as odometry gives it for a loop-closure candidate.
+/// The covariance is that of the left perturbation delta = (rotation, translation) in
+/// T = Exp(delta) * T_target_source: (theta, x, y) in 2D, (wx, wy, wz, x, y, z) in 3D.
+template <int Dim>
+struct PosePrior {
+  Rigid<Dim> T_target_source = Rigid<Dim>::Identity();
+  Eigen::Matrix<double, kPoseDof<Dim>, kPoseDof<Dim>> covariance =
+      Eigen::Matrix<double, kPoseDof<Dim>, kPoseDof<Dim>>::Identity();
+};
+
+/// What a front end hands a verifier: the matched points and, optionally, a per-match score and a
+/// pose prior. Never ground truth.
 template <int Dim>
 struct Correspondences {
   using Points = Eigen::Matrix<double, Dim, Eigen::Dynamic>;
   Points source;  ///< m_i, one column per correspondence (source frame)
   Points target;  ///< q_i, one column per correspondence (target frame)
+  /// Empty, or one score per correspondence, higher = more likely correct (e.g. the negated
+  /// descriptor distance); PROSAC samples in this order.
+  std::vector<double> score;
+  std::optional<PosePrior<Dim>> prior;  ///< odometry guess, when the caller has one (JCBB uses it)
 
   Eigen::Index size() const { return source.cols(); }
   bool empty() const { return source.cols() == 0; }
@@ -35,8 +55,9 @@ struct LabeledSet {
   GroundTruth<Dim> truth;
 };
 
-/// Throws std::invalid_argument naming the first bad field: mismatched sizes or a non-finite
-/// coordinate.
+/// Throws std::invalid_argument naming the first bad field: mismatched sizes, a non-finite
+/// coordinate or score, a score count that is not 0 or n, a prior covariance that is not finite,
+/// symmetric and positive definite.
 template <int Dim>
 void validate(const Correspondences<Dim>& corr);
 

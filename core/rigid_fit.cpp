@@ -1,6 +1,5 @@
 #include "core/rigid_fit.hpp"
 
-#include <Eigen/SVD>
 #include <numeric>
 #include <stdexcept>
 
@@ -42,21 +41,7 @@ std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr,
     H += w * ds * (corr.target.col(indices[k]) - mean_t).transpose();
     spread += w * ds.squaredNorm();
   }
-  Eigen::JacobiSVD<Mat> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Vec s = svd.singularValues();
-  // Rank test relative to the data's own scale: the rotation is unique when rank(H) >= Dim - 1.
-  const double tol = 1e-12 * std::max(spread, 1e-300);
-  if (!(spread > 0.0) || s(Dim - 2) <= tol) return std::nullopt;
-
-  Mat D = Mat::Identity();
-  D(Dim - 1, Dim - 1) =
-      (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
-  const Mat R = svd.matrixV() * D * svd.matrixU().transpose();
-
-  Rigid<Dim> T = Rigid<Dim>::Identity();
-  T.linear() = R;
-  T.translation() = mean_t - R * mean_s;
-  return T;
+  return rigid_from_moments<Dim>(H, spread, mean_s, mean_t);
 }
 
 template <int Dim>

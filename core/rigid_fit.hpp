@@ -1,5 +1,9 @@
 #pragma once
 // Closed-form least-squares rigid fit (Arun et al. 1987; Umeyama 1991, without scale).
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -18,6 +22,81 @@ template <int Dim>
 std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr,
                                     const std::vector<int>& indices,
                                     const std::vector<double>& weights = {});
+
+/// The closed-form step shared by every fit: H = sum w (m - m_bar)(q - q_bar)^T = U S V^T gives
+/// R = V D U^T with D = diag(1, ..., 1, det(V U^T)), and t = q_bar - R m_bar. `spread` is
+/// sum w ||m - m_bar||^2, the scale of the rank test. nullopt when rank(H) < Dim - 1.
+template <int Dim>
+std::optional<Rigid<Dim>> rigid_from_moments(const Eigen::Matrix<double, Dim, Dim>& H,
+                                             double spread,
+                                             const Eigen::Matrix<double, Dim, 1>& mean_s,
+                                             const Eigen::Matrix<double, Dim, 1>& mean_t) {
+  using Mat = Eigen::Matrix<double, Dim, Dim>;
+  Eigen::JacobiSVD<Mat> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  // Rank test relative to the data's own scale: the rotation is unique when rank(H) >= Dim - 1.
+  const double tol = 1e-12 * std::max(spread, 1e-300);
+  if (!(spread > 0.0) || svd.singularValues()(Dim - 2) <= tol) return std::nullopt;
+  Mat D = Mat::Identity();
+  D(Dim - 1, Dim - 1) =
+      (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  Rigid<Dim> T = Rigid<Dim>::Identity();
+  T.linear() = svd.matrixV() * D * svd.matrixU().transpose();
+  T.translation() = mean_t - T.linear() * mean_s;
+  return T;
+}
+
+/// Unweighted fit of K fixed-size pairs (minimal and small samples: no allocation).
+template <int Dim, int K>
+std::optional<Rigid<Dim>> fit_rigid_fixed(const Eigen::Matrix<double, Dim, K>& m,
+                                          const Eigen::Matrix<double, Dim, K>& q) {
+  const Eigen::Matrix<double, Dim, 1> mean_s = m.rowwise().mean(), mean_t = q.rowwise().mean();
+  const Eigen::Matrix<double, Dim, K> ds = m.colwise() - mean_s;
+  const Eigen::Matrix<double, Dim, Dim> H = ds * (q.colwise() - mean_t).transpose();
+  return rigid_from_moments<Dim>(H, ds.squaredNorm(), mean_s, mean_t);
+}
+
+/// The same least-squares fit for minimal samples (2 pairs in 2D, 3 in 3D), several times faster
+/// than the SVD: in 2D the angle is atan2(sum ds x dq, sum ds . dq); in 3D the right singular
+/// vectors come from the closed-form eigen-decomposition of H^T H, u_i = H v_i / s_i for the two
+/// largest, u_3 = u_1 x u_2, and R = v_1 u_1^T + v_2 u_2^T + det(V) v_3 u_3^T (Umeyama's D).
+/// nullopt when the sample is degenerate (rank(H) < Dim - 1).
+template <int Dim>
+std::optional<Rigid<Dim>> fit_rigid_minimal(const Eigen::Matrix<double, Dim, Dim>& m,
+                                            const Eigen::Matrix<double, Dim, Dim>& q) {
+  using Vec = Eigen::Matrix<double, Dim, 1>;
+  const Vec mean_s = m.rowwise().mean(), mean_t = q.rowwise().mean();
+  const Eigen::Matrix<double, Dim, Dim> ds = m.colwise() - mean_s, dq = q.colwise() - mean_t;
+  const double spread = ds.squaredNorm();
+  Rigid<Dim> T = Rigid<Dim>::Identity();
+  if constexpr (Dim == 2) {
+    double c = 0.0, s = 0.0;
+    for (int k = 0; k < 2; ++k) {
+      c += ds.col(k).dot(dq.col(k));
+      s += ds(0, k) * dq(1, k) - ds(1, k) * dq(0, k);
+    }
+    if (!(spread > 0.0) || std::hypot(c, s) <= 1e-12 * spread) return std::nullopt;
+    const double angle = std::atan2(s, c);
+    T.linear() << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+  } else {
+    const Eigen::Matrix3d H = ds * dq.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(H.transpose() * H);  // ascending eigenvalues s_i^2
+    const Eigen::Matrix3d& V = eig.eigenvectors();
+    const double s1 = std::sqrt(std::max(eig.eigenvalues()(2), 0.0));
+    const double s2 = std::sqrt(std::max(eig.eigenvalues()(1), 0.0));
+    if (!(spread > 0.0) || s2 <= 1e-6 * spread) return std::nullopt;
+    const Eigen::Vector3d u1 = (H * V.col(2) / s1).normalized();
+    Eigen::Vector3d u2 = H * V.col(1) / s2;
+    u2 = (u2 - u2.dot(u1) * u1).normalized();
+    const Eigen::Vector3d u3 = u1.cross(u2);
+    // det of V ordered like U (largest first): [v_1 v_2 v_3] = V with columns reversed.
+    const double d = V.col(2).cross(V.col(1)).dot(V.col(0)) < 0.0 ? -1.0 : 1.0;
+    T.linear() =
+        V.col(2) * u1.transpose() + V.col(1) * u2.transpose() + d * V.col(0) * u3.transpose();
+  }
+  T.translation() = mean_t - T.linear() * mean_s;
+  return T;
+}
 
 /// All correspondences, unweighted.
 template <int Dim>

@@ -51,6 +51,7 @@ struct Counters {
   long long branch_nodes = 0;  ///< clique search nodes expanded
   long long iterations = 0;    ///< RANSAC hypotheses drawn (degenerate ones included)
   long long graph_edges = 0;   ///< edges of the correspondence graph
+  long long local_optimisations = 0;  ///< LO-RANSAC inner optimisations run
 };
 
 template <int Dim>

@@ -55,7 +55,7 @@ TYPED_TEST(RigidFit, ReverseFitIsTheInverse) {
   const Rigid<Dim> T = test::random_rigid<Dim>(rng);
   const auto c =
       apply<Dim>(T, Eigen::Matrix<double, Dim, Eigen::Dynamic>::Random(Dim, 50), 0.05, rng);
-  Correspondences<Dim> reversed{c.target, c.source};
+  Correspondences<Dim> reversed{c.target, c.source, {}, {}};
   const auto forward = fit_rigid(c);
   const auto backward = fit_rigid(reversed);
   ASSERT_TRUE(forward && backward);

@@ -24,7 +24,8 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     EXPECT_FALSE(info.description.empty());
   }
   // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
-  std::vector<std::string> expected{"clique", "mac", "ransac"};
+  std::vector<std::string> expected{"clique",  "lo-ransac", "mac", "msac",
+                                    "prosac", "ransac", "ransac-adaptive"};
   for (const auto& algo : CliqueAlgorithms::list()) expected.push_back("clique-" + algo.name);
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(names, expected);
@@ -137,11 +138,11 @@ TEST_F(Registered, BadInputBecomesAnErrorStatusNotACrash) {
     auto r = solver->solve(c, SolverParams{});
     EXPECT_EQ(r.status, Status::error);
     EXPECT_NE(r.message.find("correspondence 4"), std::string::npos) << r.message;
-    Correspondences<3> mismatched{Eigen::Matrix3Xd::Zero(3, 4), Eigen::Matrix3Xd::Zero(3, 5)};
+    Correspondences<3> mismatched{Eigen::Matrix3Xd::Zero(3, 4), Eigen::Matrix3Xd::Zero(3, 5), {}, {}};
     EXPECT_EQ(solver->solve(mismatched, SolverParams{}).status, Status::error);
     SolverParams bad;
     bad.eps = -1;
-    r = solver->solve(Correspondences<3>{c.source, c.source}, bad);
+    r = solver->solve(Correspondences<3>{c.source, c.source, {}, {}}, bad);
     EXPECT_EQ(r.status, Status::error);
     EXPECT_NE(r.message.find("eps"), std::string::npos);
     const auto empty = solver->solve(Correspondences<2>{}, SolverParams{});
@@ -151,7 +152,7 @@ TEST_F(Registered, BadInputBecomesAnErrorStatusNotACrash) {
 }
 
 TEST_F(Registered, CliqueReportsGraphBeyondMemoryCap) {
-  Correspondences<3> c{Eigen::Matrix3Xd::Zero(3, 3000), Eigen::Matrix3Xd::Zero(3, 3000)};
+  Correspondences<3> c{Eigen::Matrix3Xd::Zero(3, 3000), Eigen::Matrix3Xd::Zero(3, 3000), {}, {}};
   SolverParams sp;
   sp.max_graph_bytes = 1000;
   const auto r = SolverRegistry::create("clique")->solve(c, sp);
