@@ -1,6 +1,8 @@
 #pragma once
 // Closed-form least-squares rigid fit (Arun et al. 1987; Umeyama 1991, without scale).
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -91,8 +93,20 @@ std::optional<Rigid<Dim>> fit_rigid_minimal(const Eigen::Matrix<double, Dim, Dim
     const Eigen::Vector3d u3 = u1.cross(u2);
     // det of V ordered like U (largest first): [v_1 v_2 v_3] = V with columns reversed.
     const double d = V.col(2).cross(V.col(1)).dot(V.col(0)) < 0.0 ? -1.0 : 1.0;
-    T.linear() =
+    const Eigen::Matrix3d R0 =
         V.col(2) * u1.transpose() + V.col(1) * u2.transpose() + d * V.col(0) * u3.transpose();
+    // The closed-form eigenvalues lose digits on thin triangles (up to ~1e-4): one Newton step on
+    // max tr(R^T H^T) over R = R0 exp(w^) squares the error. With M = R0^T H^T, the gradient is
+    // the skew part of M and the Hessian tr(M) I - sym(M).
+    const Eigen::Matrix3d M = R0.transpose() * H.transpose();
+    const Eigen::Vector3d g(M(2, 1) - M(1, 2), M(0, 2) - M(2, 0), M(1, 0) - M(0, 1));
+    const Eigen::Matrix3d hess =
+        M.trace() * Eigen::Matrix3d::Identity() - 0.5 * (M + M.transpose());
+    const Eigen::Vector3d w = hess.ldlt().solve(g);
+    const double angle = w.norm();
+    T.linear() = angle > 0.0 && std::isfinite(angle)
+                     ? Eigen::Matrix3d(R0 * Eigen::AngleAxisd(angle, w / angle).toRotationMatrix())
+                     : R0;
   }
   T.translation() = mean_t - T.linear() * mean_s;
   return T;
