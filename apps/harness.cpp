@@ -32,6 +32,7 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
   r.branch_nodes = result.counters.branch_nodes;
   r.iterations = result.counters.iterations;
   r.graph_edges = result.counters.graph_edges;
+  r.local_optimisations = result.counters.local_optimisations;
   const Eigen::Matrix<double, Dim + 1, Dim + 1> M = result.T_target_source.matrix();
   for (int i = 0; i <= Dim; ++i) {
     for (int j = 0; j <= Dim; ++j) r.T_target_source.push_back(M(i, j));
@@ -69,7 +70,7 @@ void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecor
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const auto& name : config.solvers) solvers.push_back(SolverRegistry::create(name));
   for (int t = 0; t < config.trials; ++t) {
-    SyntheticParams sp;
+    SyntheticParams sp = config.shape;
     sp.n = config.n;
     sp.outlier_ratio = ratio;
     sp.noise = config.noise;
@@ -77,12 +78,16 @@ void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecor
     sp.max_translation = config.extent / 2;
     sp.seed = derive_seed(config.seed, {std::uint64_t(Dim), std::uint64_t(config.n), bits_of(ratio),
                                         std::uint64_t(t)});
-    const LabeledSet<Dim> set = make_synthetic<Dim>(sp);
+    LabeledSet<Dim> set = make_synthetic<Dim>(sp);
+    if (config.prior_sigma_rot > 0.0 && config.prior_sigma_trans > 0.0) {
+      add_pose_prior(set, config.prior_sigma_rot, config.prior_sigma_trans, sp.seed);
+    }
     SolverParams params = config.params;
     params.seed = derive_seed(sp.seed, {1});
     for (std::size_t s = 0; s < solvers.size(); ++s) {
       TrialRecord r = evaluate(*solvers[s], config.solvers[s], set, params, config.criteria);
       r.dataset = "synthetic";
+      r.generator = sp.kind;
       r.outlier_ratio = ratio;
       r.noise = config.noise;
       r.trial = t;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/correspondences.hpp"
+#include "generators/synthetic.hpp"
 #include "reports/record.hpp"
 #include "solvers/solver.hpp"
 
@@ -24,6 +25,11 @@ struct SweepConfig {
   std::vector<double> outlier_ratios{0.5, 0.9, 0.99};
   double noise = 0.01;
   double extent = 10.0;
+  /// Generator kind and its per-kind shape; n, ratio, noise, extent and seed come from above.
+  SyntheticParams shape;
+  /// When both are > 0, each set carries a pose prior drawn around the truth (add_pose_prior).
+  double prior_sigma_rot = 0.0;    ///< [rad]
+  double prior_sigma_trans = 0.0;  ///< [m]
   int trials = 20;
   std::uint64_t seed = 1;
   SolverParams params;

@@ -1,4 +1,5 @@
 // verifybench: command-line front end. list | sweep | run; see `verifybench --help`.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -43,6 +44,9 @@ void add_solver_options(vb::Options& o) {
            "depend on it")
       .add("mac-max-cliques", "K", "1000000", "mac: stop enumerating maximal cliques after K")
       .add("mac-min-clique", "K", "3", "mac: smallest maximal clique that makes a hypothesis")
+      .add("jcbb-sigma", "M", "0",
+           "jcbb: per-axis point noise sigma [m] (0 = inlier threshold / 3)")
+      .add("jcbb-confidence", "P", "0.95", "jcbb: level of the chi-square gates")
       .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
       .add("success-trans", "M", "0.3", "success: translation error under this [m]")
       .add("seed", "S", "1", "seed of every random draw (recorded in the report)")
@@ -65,6 +69,8 @@ vb::SolverParams solver_params(const vb::Options& o) {
   p.threads = static_cast<int>(o.integer("threads", 0, 1024));
   p.mac_max_cliques = o.integer("mac-max-cliques", 1, 1LL << 62);
   p.mac_min_clique = static_cast<int>(o.integer("mac-min-clique", 2, 1 << 30));
+  p.jcbb_sigma = o.real("jcbb-sigma", 0.0, 1e9);
+  p.jcbb_confidence = o.real("jcbb-confidence", 1e-9, 1 - 1e-12);
   p.validate();
   return p;
 }
@@ -98,6 +104,8 @@ json params_json(const vb::SolverParams& p, const vb::SuccessCriteria& c) {
           {"threads", p.threads},
           {"mac_max_cliques", p.mac_max_cliques},
           {"mac_min_clique", p.mac_min_clique},
+          {"jcbb_sigma", p.jcbb_point_sigma()},
+          {"jcbb_confidence", p.jcbb_confidence},
           {"success_criteria",
            {{"max_rotation_error_deg", c.max_rotation_error_deg},
             {"max_translation_error", c.max_translation_error},
@@ -132,6 +140,11 @@ int cmd_list() {
   std::printf("solvers (sweep, run --solvers):\n");
   for (const auto& info : vb::SolverRegistry::list()) {
     std::printf("  %-18s %s\n", info.name.c_str(), info.description.c_str());
+  }
+  std::printf("generators (sweep --generator):\n");
+  for (const auto& g : vb::list_generators()) {
+    std::printf("  %-18s %s%s\n", g.name.c_str(), g.description.c_str(),
+                g.supports_3d ? "" : " [2D only]");
   }
   std::printf("clique algorithms (dimacs --algorithms; solver clique-<name>):\n");
   for (const auto& info : vb::CliqueAlgorithms::list()) {
@@ -228,6 +241,23 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   return 0;
 }
 
+/// Refuses an unknown generator or one that lacks a requested dimension, before any work.
+void check_generator(const std::string& kind, const std::vector<int>& dims) {
+  std::string known;
+  for (const auto& g : vb::list_generators()) {
+    known += (known.empty() ? "" : ", ") + g.name;
+    if (g.name != kind) continue;
+    for (int d : dims) {
+      if ((d == 2 && !g.supports_2d) || (d == 3 && !g.supports_3d)) {
+        throw vb::UsageError("--generator " + kind + " does not exist in " + std::to_string(d) +
+                             "D");
+      }
+    }
+    return;
+  }
+  throw vb::UsageError("--generator: unknown kind '" + kind + "' (known: " + known + ")");
+}
+
 int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
   vb::Options o;
   add_solver_options(o);
@@ -237,7 +267,18 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
            "outlier ratios: start:stop:step (stop included) or a,b,c")
       .add("noise", "SIGMA", "0.01", "Gaussian noise per axis on inlier targets [m]")
       .add("extent", "M", "10", "side of the cube (square) the points are drawn in [m]")
-      .add("trials", "K", "20", "sets per (dim, outlier ratio) point");
+      .add("trials", "K", "20", "sets per (dim, outlier ratio) point")
+      .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)")
+      .add("group-ratio", "R", "0.5", "rigid-group: wrong group size / inlier count")
+      .add("grid-spacing", "M", "2", "repetitive: pillar spacing along the corridor [m]")
+      .add("overlap", "F", "0.3", "partial-overlap: fraction of the scene holding the inliers")
+      .add("tail-dof", "NU", "3", "heavy-tailed: Student-t degrees of freedom")
+      .add("anisotropy", "A", "5", "anisotropic: noise along the sensor ray / across it")
+      .add("near-radius", "M", "1", "near-true, bev-orb: outliers this far from the truth [m]")
+      .add("cell", "M", "0.5", "bev-orb: bird's-eye-view cell size [m]")
+      .add("prior-rot-deg", "DEG", "0",
+           "give each set a pose prior: rotation sigma per axis [deg] (with --prior-trans)")
+      .add("prior-trans", "M", "0", "pose prior translation sigma per axis [m]");
   o.parse(args);
   if (o.help_requested()) {
     std::cout << "usage: verifybench sweep [options] --out FILE.json\n" << o.help();
@@ -255,13 +296,37 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.noise = o.real("noise", 0.0, 1e9);
   c.extent = o.real("extent", 1e-9, 1e9);
   c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  c.shape.kind = o.text("generator");
+  c.shape.group_ratio = o.real("group-ratio", 1e-9, 1e9);
+  c.shape.grid_spacing = o.real("grid-spacing", 1e-9, 1e9);
+  c.shape.overlap = o.real("overlap", 1e-9, 1.0);
+  c.shape.tail_dof = o.real("tail-dof", 1e-9, 1e9);
+  c.shape.anisotropy = o.real("anisotropy", 1.0, 1e9);
+  c.shape.near_radius = o.real("near-radius", 1e-9, 1e9);
+  c.shape.cell = o.real("cell", 1e-9, 1e9);
+  check_generator(c.shape.kind, c.dims);
+  c.prior_sigma_rot = o.real("prior-rot-deg", 0.0, 180.0) * M_PI / 180.0;
+  c.prior_sigma_trans = o.real("prior-trans", 0.0, 1e9);
+  if ((c.prior_sigma_rot > 0.0) != (c.prior_sigma_trans > 0.0)) {
+    throw vb::UsageError("--prior-rot-deg and --prior-trans go together (both > 0)");
+  }
   c.params = solver_params(o);
   c.seed = c.params.seed;
   c.criteria = criteria(o);
   const std::string out = o.required("out");
 
   json parameters = params_json(c.params, c.criteria);
-  parameters["sweep"] = {{"generator", "uniform"},
+  parameters["sweep"] = {{"generator", c.shape.kind},
+                         {"generator_shape",
+                          {{"group_ratio", c.shape.group_ratio},
+                           {"grid_spacing", c.shape.grid_spacing},
+                           {"overlap", c.shape.overlap},
+                           {"tail_dof", c.shape.tail_dof},
+                           {"anisotropy", c.shape.anisotropy},
+                           {"near_radius", c.shape.near_radius},
+                           {"cell", c.shape.cell}}},
+                         {"prior_sigma_rot_deg", c.prior_sigma_rot * 180.0 / M_PI},
+                         {"prior_sigma_trans", c.prior_sigma_trans},
                          {"dims", c.dims},
                          {"n", c.n},
                          {"outlier_ratios", c.outlier_ratios},

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/random.hpp"
+
 namespace verifybench {
 
 namespace {
@@ -35,7 +37,202 @@ Eigen::Matrix3d random_rotation<3>(std::mt19937_64& rng) {
   return q.normalized().toRotationMatrix();
 }
 
+template <int Dim>
+using Vec = Eigen::Matrix<double, Dim, 1>;
+
+/// The draws every kind shares, in the order the original uniform generator made them.
+template <int Dim>
+struct Draws {
+  explicit Draws(const SyntheticParams& p)
+      : p(p), rng(p.seed), shift(-p.max_translation, p.max_translation) {}
+
+  Vec<Dim> in_cube() {
+    Vec<Dim> v;
+    for (int d = 0; d < Dim; ++d) v(d) = p.extent * unit(rng);
+    return v;
+  }
+  Vec<Dim> gaussian(double sigma) {
+    Vec<Dim> v;
+    for (int d = 0; d < Dim; ++d) v(d) = sigma * normal(rng);
+    return v;
+  }
+  Vec<Dim> direction() {
+    Vec<Dim> v = gaussian(1.0);
+    while (v.norm() < 1e-9) v = gaussian(1.0);
+    return v.normalized();
+  }
+  Rigid<Dim> motion() {
+    Rigid<Dim> T = Rigid<Dim>::Identity();
+    T.linear() = random_rotation<Dim>(rng);
+    for (int d = 0; d < Dim; ++d) T.translation()(d) = shift(rng);
+    return T;
+  }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  }
+  int index(int count) { return std::uniform_int_distribution<int>(0, count - 1)(rng); }
+
+  const SyntheticParams& p;
+  std::mt19937_64 rng;
+  std::uniform_real_distribution<double> unit{-0.5, 0.5};
+  std::uniform_real_distribution<double> shift;
+  std::normal_distribution<double> normal{0.0, 1.0};
+};
+
+/// Angle of a^-1 b [rad].
+template <int Dim>
+double rotation_angle(const Rigid<Dim>& a, const Rigid<Dim>& b) {
+  const Eigen::Matrix<double, Dim, Dim> R = a.linear().transpose() * b.linear();
+  const double c = std::clamp((R.trace() - (Dim - 2)) / 2.0, -1.0, 1.0);
+  return std::acos(c);
+}
+
+/// Shuffled labels: n - round(n * ratio) ones.
+std::vector<std::uint8_t> draw_labels(const SyntheticParams& p, std::mt19937_64& rng) {
+  const int outliers = static_cast<int>(std::lround(p.outlier_ratio * p.n));
+  std::vector<std::uint8_t> labels(static_cast<std::size_t>(p.n), 0);
+  std::fill(labels.begin(), labels.begin() + (p.n - outliers), 1);
+  std::shuffle(labels.begin(), labels.end(), rng);
+  return labels;
+}
+
+template <int Dim>
+void put(LabeledSet<Dim>& set, int i, const Vec<Dim>& m, const Vec<Dim>& q) {
+  set.corr.source.col(i) = m;
+  set.corr.target.col(i) = q;
+}
+
+/// uniform, rigid-group, partial-overlap, heavy-tailed, anisotropic, near-true: source points in
+/// the cube, inliers q = T m + noise, outliers by kind.
+template <int Dim>
+void fill_cube_kinds(const SyntheticParams& p, Draws<Dim>& draw, const Rigid<Dim>& T,
+                     LabeledSet<Dim>& set) {
+  const auto& labels = set.truth.labels;
+  const int inliers = static_cast<int>(std::count(labels.begin(), labels.end(), 1));
+  const int outliers = p.n - inliers;
+  // rigid-group: the first `group` outliers (in index order) follow one wrong motion.
+  const int group = p.kind == "rigid-group"
+                        ? std::min(outliers, static_cast<int>(std::lround(p.group_ratio * inliers)))
+                        : 0;
+  Rigid<Dim> wrong = T;
+  if (group > 0) {
+    while (rotation_angle(wrong, T) < 0.5) wrong = draw.motion();  // at least ~30 deg apart
+  }
+  std::student_t_distribution<double> student(p.tail_dof);
+  int grouped = 0;
+  for (int i = 0; i < p.n; ++i) {
+    Vec<Dim> m = draw.in_cube();
+    Vec<Dim> q;
+    if (labels[static_cast<std::size_t>(i)]) {
+      if (p.kind == "partial-overlap") {  // inliers only in the overlapping slab x < x0
+        m(0) = p.extent * (-0.5 + p.overlap * (m(0) / p.extent + 0.5));
+      }
+      q = T * m;
+      if (p.kind == "heavy-tailed") {
+        for (int d = 0; d < Dim; ++d) q(d) += p.noise * student(draw.rng);
+      } else if (p.kind == "anisotropic") {
+        // Range noise: sigma * anisotropy along the ray from the sensor (target origin).
+        const Vec<Dim> ray = q.norm() > 1e-9 ? Vec<Dim>(q.normalized()) : Vec<Dim>::UnitX();
+        const Vec<Dim> e = draw.gaussian(p.noise);
+        q += e + (p.anisotropy - 1.0) * ray.dot(e) * ray;
+      } else {
+        for (int d = 0; d < Dim; ++d) q(d) += p.noise * draw.normal(draw.rng);
+      }
+    } else if (grouped < group) {
+      ++grouped;
+      q = wrong * m + draw.gaussian(p.noise);
+    } else if (p.kind == "near-true") {
+      q = T * m + draw.uniform(0.25 * p.near_radius, p.near_radius) * draw.direction();
+    } else {
+      q = T * draw.in_cube();  // an unrelated point of the same scene
+    }
+    put(set, i, m, q);
+  }
+}
+
+/// repetitive: a corridor of identical pillars every grid_spacing along x; outliers match the same
+/// spot of a pillar one or two steps further along, so each shift is a rigidly consistent wrong
+/// group (a translation error of 1-2 steps).
+template <int Dim>
+void fill_repetitive(const SyntheticParams& p, Draws<Dim>& draw, const Rigid<Dim>& T,
+                     LabeledSet<Dim>& set) {
+  const int steps = std::max(1, static_cast<int>(std::floor(p.extent / p.grid_spacing)));
+  for (int i = 0; i < p.n; ++i) {
+    // Pillars every grid_spacing along x, each 0.4 steps thick; free across the corridor.
+    Vec<Dim> m = draw.in_cube();
+    m(0) = p.grid_spacing * (draw.index(steps + 1) - steps / 2 + draw.uniform(-0.2, 0.2));
+    Vec<Dim> q;
+    if (set.truth.labels[static_cast<std::size_t>(i)]) {
+      q = T * m;
+    } else {
+      static constexpr int kShifts[] = {-2, -1, 1, 2};
+      Vec<Dim> copy = m;
+      copy(0) += p.grid_spacing * kShifts[draw.index(4)];
+      q = T * copy;
+    }
+    put<Dim>(set, i, m, q + draw.gaussian(p.noise));
+  }
+}
+
+/// bev-orb: keypoints of a bird's-eye-view image: corners along walls (line segments) of a local
+/// map, both sides quantised to `cell`; outliers are half descriptor confusions within
+/// near_radius, half unrelated keypoints on other walls.
+void fill_bev_orb(const SyntheticParams& p, Draws<2>& draw, const Rigid<2>& T, LabeledSet<2>& set) {
+  struct Wall {
+    Vec<2> a, b;
+  };
+  std::vector<Wall> walls(static_cast<std::size_t>(std::max(4, p.n / 40)));
+  for (auto& w : walls) {
+    w.a = draw.in_cube();
+    w.b = w.a + draw.uniform(0.1, 0.4) * p.extent * draw.direction();
+  }
+  auto on_wall = [&] {
+    const Wall& w = walls[static_cast<std::size_t>(draw.index(static_cast<int>(walls.size())))];
+    return Vec<2>(w.a + draw.uniform(0.0, 1.0) * (w.b - w.a));
+  };
+  auto quantise = [&](const Vec<2>& v) {
+    return Vec<2>(((v.array() / p.cell).floor() + 0.5) * p.cell);
+  };
+  for (int i = 0; i < p.n; ++i) {
+    const Vec<2> x = on_wall();
+    Vec<2> q;
+    if (set.truth.labels[static_cast<std::size_t>(i)]) {
+      q = T * x + draw.gaussian(p.noise);
+    } else if (draw.index(2) == 0) {
+      q = T * x + draw.uniform(0.25 * p.near_radius, p.near_radius) * draw.direction();
+    } else {
+      q = T * on_wall();
+    }
+    put(set, i, quantise(x), quantise(q));
+  }
+}
+
 }  // namespace
+
+const std::vector<GeneratorInfo>& list_generators() {
+  static const std::vector<GeneratorInfo> kinds = {
+      {"uniform", "outlier targets uniform in the scene; Gaussian noise on inliers", true, true},
+      {"rigid-group",
+       "adds a rigidly consistent wrong group (--group-ratio x inliers) following a second motion",
+       true, true},
+      {"repetitive",
+       "corridor lattice (--grid-spacing); outliers match pillars 1-2 steps along, each shift a "
+       "consistent wrong group",
+       true, true},
+      {"partial-overlap", "inliers only in a slab of --overlap of the scene; outliers anywhere",
+       true, true},
+      {"heavy-tailed", "Student-t noise on inliers (--tail-dof), uniform outliers", true, true},
+      {"anisotropic", "range noise --anisotropy x larger along the sensor ray, uniform outliers",
+       true, true},
+      {"near-true", "outliers within --near-radius of the true match (descriptor confusions)", true,
+       true},
+      {"bev-orb",
+       "2D bird's-eye-view ORB-like matches: corners on walls, --cell quantisation, near and "
+       "cross-wall confusions",
+       true, false},
+  };
+  return kinds;
+}
 
 void SyntheticParams::validate() const {
   require(n >= 1, "n", n, "an integer >= 1");
@@ -45,53 +242,92 @@ void SyntheticParams::validate() const {
   require(extent > 0.0 && std::isfinite(extent), "extent", extent, "a finite value > 0");
   require(max_translation >= 0.0 && std::isfinite(max_translation), "max_translation",
           max_translation, "a finite value >= 0");
+  require(group_ratio > 0.0 && std::isfinite(group_ratio), "group_ratio", group_ratio,
+          "a finite value > 0");
+  require(grid_spacing > 0.0 && (kind != "repetitive" || grid_spacing <= extent), "grid_spacing",
+          grid_spacing, "a value in (0, extent]");
+  require(overlap > 0.0 && overlap <= 1.0, "overlap", overlap, "a value in (0, 1]");
+  require(tail_dof > 0.0 && std::isfinite(tail_dof), "tail_dof", tail_dof, "a finite value > 0");
+  require(anisotropy >= 1.0 && std::isfinite(anisotropy), "anisotropy", anisotropy,
+          "a finite value >= 1");
+  require(near_radius > 0.0 && std::isfinite(near_radius), "near_radius", near_radius,
+          "a finite value > 0");
+  require(cell > 0.0 && std::isfinite(cell), "cell", cell, "a finite value > 0");
 }
 
 template <int Dim>
 LabeledSet<Dim> make_synthetic(const SyntheticParams& params) {
   params.validate();
-  using Vec = Eigen::Matrix<double, Dim, 1>;
-  std::mt19937_64 rng(params.seed);
-  std::uniform_real_distribution<double> unit(-0.5, 0.5);
-  std::uniform_real_distribution<double> shift(-params.max_translation, params.max_translation);
-  std::normal_distribution<double> noise(0.0, 1.0);
-
-  Rigid<Dim> T = Rigid<Dim>::Identity();
-  T.linear() = random_rotation<Dim>(rng);
-  for (int d = 0; d < Dim; ++d) T.translation()(d) = shift(rng);
-
-  const int n = params.n;
-  const int outliers = static_cast<int>(std::lround(params.outlier_ratio * n));
-  std::vector<std::uint8_t> labels(static_cast<std::size_t>(n), 0);
-  std::fill(labels.begin(), labels.begin() + (n - outliers), 1);
-  std::shuffle(labels.begin(), labels.end(), rng);
-
-  auto draw_in_cube = [&] {
-    Vec p;
-    for (int d = 0; d < Dim; ++d) p(d) = params.extent * unit(rng);
-    return p;
-  };
+  const auto& kinds = list_generators();
+  const auto it = std::find_if(kinds.begin(), kinds.end(),
+                               [&](const GeneratorInfo& g) { return g.name == params.kind; });
+  if (it == kinds.end()) {
+    std::string known;
+    for (const auto& g : kinds) known += (known.empty() ? "" : ", ") + g.name;
+    throw std::invalid_argument("unknown generator '" + params.kind + "'; known: " + known);
+  }
+  if ((Dim == 2 && !it->supports_2d) || (Dim == 3 && !it->supports_3d)) {
+    throw std::invalid_argument("generator '" + params.kind + "' does not exist in " +
+                                std::to_string(Dim) + "D");
+  }
+  Draws<Dim> draw(params);
+  const Rigid<Dim> T = draw.motion();
   LabeledSet<Dim> set;
-  set.corr.source.resize(Dim, n);
-  set.corr.target.resize(Dim, n);
-  for (int i = 0; i < n; ++i) {
-    const Vec m = draw_in_cube();
-    Vec q;
-    if (labels[static_cast<std::size_t>(i)]) {
-      q = T * m;
-      for (int d = 0; d < Dim; ++d) q(d) += params.noise * noise(rng);
+  set.truth.labels = draw_labels(params, draw.rng);
+  set.corr.source.resize(Dim, params.n);
+  set.corr.target.resize(Dim, params.n);
+  if (params.kind == "repetitive") {
+    fill_repetitive(params, draw, T, set);
+  } else if constexpr (Dim == 2) {
+    if (params.kind == "bev-orb") {
+      fill_bev_orb(params, draw, T, set);
     } else {
-      q = T * draw_in_cube();  // an unrelated point of the same scene
+      fill_cube_kinds(params, draw, T, set);
     }
-    set.corr.source.col(i) = m;
-    set.corr.target.col(i) = q;
+  } else {
+    fill_cube_kinds(params, draw, T, set);
   }
   set.truth.T_target_source = T;
-  set.truth.labels = std::move(labels);
   return set;
+}
+
+template <int Dim>
+void add_pose_prior(LabeledSet<Dim>& set, double sigma_rot, double sigma_trans,
+                    std::uint64_t seed) {
+  require(sigma_rot > 0.0 && std::isfinite(sigma_rot), "prior sigma_rot", sigma_rot,
+          "a finite value > 0");
+  require(sigma_trans > 0.0 && std::isfinite(sigma_trans), "prior sigma_trans", sigma_trans,
+          "a finite value > 0");
+  if (!set.truth.T_target_source) {
+    throw std::invalid_argument("a pose prior needs the set's true motion");
+  }
+  constexpr int kRot = Dim == 2 ? 1 : 3;
+  std::mt19937_64 rng(derive_seed(seed, {0x5052u}));
+  std::normal_distribution<double> g(0.0, 1.0);
+  Eigen::Matrix<double, kRot, 1> w;
+  Vec<Dim> v;
+  for (int k = 0; k < kRot; ++k) w(k) = sigma_rot * g(rng);
+  for (int d = 0; d < Dim; ++d) v(d) = sigma_trans * g(rng);
+  // Odometry's guess T0 with T = Exp(delta) T0, i.e. T0 = Exp(delta)^-1 T.
+  Rigid<Dim> E = Rigid<Dim>::Identity();
+  if constexpr (Dim == 2) {
+    E.linear() = Eigen::Rotation2Dd(w(0)).toRotationMatrix();
+  } else {
+    E.linear() = w.norm() > 0 ? Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix()
+                              : Eigen::Matrix3d::Identity();
+  }
+  E.translation() = v;
+  PosePrior<Dim> prior;
+  prior.T_target_source = E.inverse() * *set.truth.T_target_source;
+  prior.covariance.setZero();
+  for (int k = 0; k < kRot; ++k) prior.covariance(k, k) = sigma_rot * sigma_rot;
+  for (int d = 0; d < Dim; ++d) prior.covariance(kRot + d, kRot + d) = sigma_trans * sigma_trans;
+  set.corr.prior = prior;
 }
 
 template LabeledSet<2> make_synthetic<2>(const SyntheticParams&);
 template LabeledSet<3> make_synthetic<3>(const SyntheticParams&);
+template void add_pose_prior<2>(LabeledSet<2>&, double, double, std::uint64_t);
+template void add_pose_prior<3>(LabeledSet<3>&, double, double, std::uint64_t);
 
 }  // namespace verifybench

@@ -1,6 +1,10 @@
 #pragma once
-// Synthetic correspondence sets with a drawn rigid motion and per-correspondence labels.
+// Synthetic correspondence sets with a drawn rigid motion and per-correspondence labels, in
+// several kinds (`list_generators()`): uniform outliers, and the structured outliers real
+// front ends produce.
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "core/correspondences.hpp"
 
@@ -13,13 +17,39 @@ struct SyntheticParams {
   double extent = 10.0;          ///< source points uniform in a cube (square) of this side [m], > 0
   double max_translation = 5.0;  ///< each translation component uniform in [-max, max] [m], >= 0
   std::uint64_t seed = 1;        ///< every draw comes from this seed
-  void validate() const;         ///< throws std::invalid_argument naming the field and value
+  std::string kind = "uniform";  ///< one of list_generators()
+  // Per-kind shape (ignored by the other kinds):
+  double group_ratio = 0.5;   ///< rigid-group: wrong group size / inlier count, > 0
+  double grid_spacing = 2.0;  ///< repetitive: lattice step along and across the corridor [m]
+  double overlap = 0.3;       ///< partial-overlap: fraction of the cube holding the inliers
+  double tail_dof = 3.0;      ///< heavy-tailed: Student-t degrees of freedom, > 0
+  double anisotropy = 5.0;    ///< anisotropic: sigma along the sensor ray / across it, >= 1
+  double near_radius = 1.0;   ///< near-true and bev-orb: outliers lie this far from the truth [m]
+  double cell = 0.5;          ///< bev-orb: bird's-eye-view cell size [m]
+  void validate() const;      ///< throws std::invalid_argument naming the field and value
 };
 
-/// Source points m_i are uniform in the cube; inlier targets are q_i = T m_i + noise; outlier
-/// targets are uniform in the cube's image under T (so outliers overlap inliers spatially). The
-/// rotation is uniform on SO(Dim). Inliers and outliers are interleaved in a random order.
+struct GeneratorInfo {
+  std::string name;
+  std::string description;  ///< one line, shown by `verifybench list`
+  bool supports_2d = true, supports_3d = true;
+};
+
+/// The generator kinds, in a stable order.
+const std::vector<GeneratorInfo>& list_generators();
+
+/// Draws a set of `params.kind`. Common to every kind: the rotation is uniform on SO(Dim), each
+/// translation component uniform in [-max_translation, max_translation], round(n * ratio)
+/// outliers interleaved with the inliers in a random order, labels 1 for the true inliers.
+/// Throws std::invalid_argument for an unknown kind (listing the known ones), a kind that does not
+/// exist in this dimension, or a bad parameter.
 template <int Dim>
 LabeledSet<Dim> make_synthetic(const SyntheticParams& params);
+
+/// Adds a pose prior as odometry would give it: the true motion perturbed on the left by a draw
+/// delta ~ N(0, diag(sigma_rot^2 (per rotation axis), sigma_trans^2 (per axis))), with that
+/// covariance. sigma_rot in radians. Seeded from `seed`.
+template <int Dim>
+void add_pose_prior(LabeledSet<Dim>& set, double sigma_rot, double sigma_trans, std::uint64_t seed);
 
 }  // namespace verifybench

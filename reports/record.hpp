@@ -22,7 +22,8 @@ struct TrialRecord {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
   std::string solver;
-  std::string dataset;  ///< "synthetic" or the dump folder
+  std::string dataset;    ///< "synthetic" or the dump folder
+  std::string generator;  ///< synthetic generator kind; empty for dumps
   int dim = 3;
   int n = 0;
   std::optional<double> outlier_ratio;  ///< drawn ratio (synthetic); unset for real dumps
@@ -39,7 +40,7 @@ struct TrialRecord {
   double rotation_error_deg = kNaN, translation_error = kNaN;              ///< NaN -> null
   std::optional<bool> success;  ///< unset when there is no ground-truth motion
   double time_ms = 0, graph_ms = 0, search_ms = 0, fit_ms = 0;
-  long long branch_nodes = 0, iterations = 0, graph_edges = 0;
+  long long branch_nodes = 0, iterations = 0, graph_edges = 0, local_optimisations = 0;
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 

@@ -93,6 +93,7 @@ json make_context(const std::vector<std::string>& command_line, std::uint64_t se
 json to_json(const TrialRecord& r) {
   json j = {{"solver", r.solver},
             {"dataset", r.dataset},
+            {"generator", r.generator.empty() ? json(nullptr) : json(r.generator)},
             {"dim", r.dim},
             {"n", r.n},
             {"outlier_ratio", r.outlier_ratio ? json(*r.outlier_ratio) : json(nullptr)},
@@ -117,18 +118,19 @@ json to_json(const TrialRecord& r) {
             {"branch_nodes", r.branch_nodes},
             {"iterations", r.iterations},
             {"graph_edges", r.graph_edges},
+            {"local_optimisations", r.local_optimisations},
             {"T_target_source", r.T_target_source}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;
 }
 
 json aggregate(const std::vector<TrialRecord>& rows) {
-  using Key = std::tuple<std::string, std::string, int, int, double, double>;
+  using Key = std::tuple<std::string, std::string, std::string, int, int, double, double>;
   auto opt = [](const std::optional<double>& v) { return v ? *v : -1.0; };
   std::map<Key, std::vector<const TrialRecord*>> groups;
   std::vector<Key> first_seen;  // keep the rows' order in the output
   for (const auto& r : rows) {
-    Key key{r.solver, r.dataset, r.dim, r.n, opt(r.outlier_ratio), opt(r.noise)};
+    Key key{r.solver, r.dataset, r.generator, r.dim, r.n, opt(r.outlier_ratio), opt(r.noise)};
     auto& g = groups[key];
     if (g.empty()) first_seen.push_back(key);
     g.push_back(&r);
@@ -155,6 +157,7 @@ json aggregate(const std::vector<TrialRecord>& rows) {
     out.push_back(
         {{"solver", head.solver},
          {"dataset", head.dataset},
+         {"generator", head.generator.empty() ? json(nullptr) : json(head.generator)},
          {"dim", head.dim},
          {"n", head.n},
          {"outlier_ratio", head.outlier_ratio ? json(*head.outlier_ratio) : json(nullptr)},

@@ -9,6 +9,9 @@ namespace verifybench {
 void register_clique_solvers();
 void register_ransac_solver();
 void register_mac_solver();
+void register_jcbb_solver();
+void register_pcl_solvers();
+void register_open3d_solvers();
 
 void register_builtin_solvers() {
   static std::once_flag once;
@@ -16,6 +19,9 @@ void register_builtin_solvers() {
     register_clique_solvers();
     register_ransac_solver();
     register_mac_solver();
+    register_jcbb_solver();
+    register_pcl_solvers();
+    register_open3d_solvers();
   });
 }
 
@@ -49,6 +55,10 @@ void SolverParams::validate() const {
   require(mac_max_cliques >= 1, "mac_max_cliques", mac_max_cliques, "an integer >= 1");
   require(mac_min_clique >= 2, "mac_min_clique", mac_min_clique, "an integer >= 2");
   require(threads >= 0, "threads", threads, "an integer >= 0 (0 = all cores)");
+  require(jcbb_sigma >= 0.0 && std::isfinite(jcbb_sigma), "jcbb_sigma", jcbb_sigma,
+          "a finite value >= 0 (0 = inlier_threshold / 3)");
+  require(jcbb_confidence > 0.0 && jcbb_confidence < 1.0, "jcbb_confidence", jcbb_confidence,
+          "a value in (0, 1)");
   require(ransac_confidence > 0.0 && ransac_confidence < 1.0, "ransac_confidence",
           ransac_confidence, "a value in (0, 1)");
 }

@@ -24,6 +24,8 @@ struct SolverParams {
       1;  ///< worker threads for graph construction (0 = all cores); results do not depend on it
   long long mac_max_cliques = 1000000;  ///< mac: stop enumerating maximal cliques after this many
   int mac_min_clique = 3;               ///< mac: smallest maximal clique that makes a hypothesis
+  double jcbb_sigma = 0.0;  ///< jcbb: per-axis point noise sigma [m]; 0 = inlier_threshold / 3
+  double jcbb_confidence = 0.95;  ///< jcbb: level of the chi-square gates, in (0, 1)
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;
@@ -31,6 +33,7 @@ struct SolverParams {
   int accept_threshold(int dim) const {
     return min_inliers > 0 ? min_inliers : (dim == 2 ? 10 : 5);
   }
+  double jcbb_point_sigma() const { return jcbb_sigma > 0.0 ? jcbb_sigma : inlier_threshold / 3.0; }
 };
 
 enum class Status {
@@ -48,9 +51,9 @@ struct StageTimes {
 };
 
 struct Counters {
-  long long branch_nodes = 0;  ///< clique search nodes expanded
-  long long iterations = 0;    ///< RANSAC hypotheses drawn (degenerate ones included)
-  long long graph_edges = 0;   ///< edges of the correspondence graph
+  long long branch_nodes = 0;         ///< clique search nodes expanded
+  long long iterations = 0;           ///< RANSAC hypotheses drawn (degenerate ones included)
+  long long graph_edges = 0;          ///< edges of the correspondence graph
   long long local_optimisations = 0;  ///< LO-RANSAC inner optimisations run
 };
 

@@ -24,8 +24,20 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     EXPECT_FALSE(info.description.empty());
   }
   // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
-  std::vector<std::string> expected{"clique",  "lo-ransac", "mac", "msac",
-                                    "prosac", "ransac", "ransac-adaptive"};
+  std::vector<std::string> expected{"clique",
+                                    "jcbb",
+                                    "lo-ransac",
+                                    "mac",
+                                    "msac",
+                                    "open3d-ransac",
+                                    "open3d-ransac-default",
+                                    "pcl-prerejective",
+                                    "pcl-prerejective-default",
+                                    "pcl-ransac",
+                                    "pcl-ransac-default",
+                                    "prosac",
+                                    "ransac",
+                                    "ransac-adaptive"};
   for (const auto& algo : CliqueAlgorithms::list()) expected.push_back("clique-" + algo.name);
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(names, expected);
