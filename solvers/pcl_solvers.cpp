@@ -5,8 +5,12 @@
 //   pcl-ransac-default     PCL's defaults: threshold 0.05 m, 1000 iterations, no refinement
 //   pcl-prerejective       SampleConsensusPrerejective + TransformationEstimationSVD, matched:
 //                          --ransac-iterations, similarity 0.9 (the edge check of lo-ransac and
-//                          Open3D), max correspondence distance = --inlier-threshold
-//   pcl-prerejective-default  PCL's defaults: 5000 iterations, similarity 0.6
+//                          Open3D), max correspondence distance = --inlier-threshold, inlier
+//                          fraction = our accept threshold / n
+//   pcl-prerejective-default  PCL's defaults: 5000 iterations, similarity 0.6, inlier fraction 0
+// Prerejective keeps the hypothesis of lowest mean inlier error among those with at least the
+// inlier fraction, not the one with most inliers: a hypothesis explaining only its own sample
+// very well can win.
 // SampleConsensusPrerejective matches by features itself; it gets a feature that is the
 // correspondence's index and k = 1, so that it draws exactly the given correspondences. It scores
 // by nearest neighbours in the target cloud (not the given pairs), as PCL does.
@@ -20,6 +24,7 @@
 #include <pcl/registration/sample_consensus_prerejective.h>
 #include <pcl/registration/transformation_estimation_svd.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "solvers/consensus.hpp"
@@ -106,6 +111,9 @@ class PclPrerejective : public SolverBase<PclPrerejective> {
     if (!defaults_) {
       align.setMaximumIterations(params.ransac_iterations);
       align.setSimilarityThreshold(0.9f);
+      // Our acceptance rule as its inlier fraction (PCL's default 0 admits any hypothesis).
+      align.setInlierFraction(static_cast<float>(params.accept_threshold(Dim)) /
+                              static_cast<float>(std::max<std::size_t>(n, 1)));
     }
     Cloud aligned;
     Eigen::Matrix4d M = Eigen::Matrix4d::Identity();

@@ -39,7 +39,7 @@ void every_kind_keeps_the_common_contract() {
       if (!set.truth.labels[static_cast<std::size_t>(i)]) continue;
       ++inliers;
       // 6 sigma of the 0.01 m noise; bev-orb adds up to a cell diagonal of quantisation.
-      const double bound = info.name == "bev-orb" ? 0.5 * std::sqrt(2.0) * 2 + 0.06
+      const double bound = info.name == "bev-orb"        ? 0.5 * std::sqrt(2.0) * 2 + 0.06
                            : info.name == "heavy-tailed" ? 1.0
                            : info.name == "anisotropic"  ? 0.3
                                                          : 0.06;
@@ -220,9 +220,9 @@ void prior_has_the_stated_spread() {
     auto set = draw<Dim>("uniform", 10, 0.0, s + 1);
     add_pose_prior(set, sr, st, s + 7);
     ASSERT_TRUE(set.corr.prior);
-    const double a = rotation_error_deg(set.corr.prior->T_target_source,
-                                        *set.truth.T_target_source) *
-                     M_PI / 180.0;
+    const double a =
+        rotation_error_deg(set.corr.prior->T_target_source, *set.truth.T_target_source) * M_PI /
+        180.0;
     rot2 += a * a;
     EXPECT_NEAR(set.corr.prior->covariance(0, 0), sr * sr, 1e-15);
     EXPECT_NEAR(set.corr.prior->covariance(Dim == 2 ? 1 : 3, Dim == 2 ? 1 : 3), st * st, 1e-15);

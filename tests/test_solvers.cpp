@@ -150,7 +150,8 @@ TEST_F(Registered, BadInputBecomesAnErrorStatusNotACrash) {
     auto r = solver->solve(c, SolverParams{});
     EXPECT_EQ(r.status, Status::error);
     EXPECT_NE(r.message.find("correspondence 4"), std::string::npos) << r.message;
-    Correspondences<3> mismatched{Eigen::Matrix3Xd::Zero(3, 4), Eigen::Matrix3Xd::Zero(3, 5), {}, {}};
+    Correspondences<3> mismatched{
+        Eigen::Matrix3Xd::Zero(3, 4), Eigen::Matrix3Xd::Zero(3, 5), {}, {}};
     EXPECT_EQ(solver->solve(mismatched, SolverParams{}).status, Status::error);
     SolverParams bad;
     bad.eps = -1;
