@@ -51,6 +51,11 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
   expect_usage_error("run --dump /nonexistent/dir " + kOut, "/nonexistent/dir");
   expect_usage_error("run " + kOut, "--dump is required");
   expect_usage_error("", "usage:");
+  expect_usage_error("sweep --generator blobs " + kOut, "unknown kind 'blobs' (known: uniform");
+  expect_usage_error("sweep --generator bev-orb --dim 2,3 " + kOut, "bev-orb does not exist in 3D");
+  expect_usage_error("sweep --prior-rot-deg 2 " + kOut, "--prior-rot-deg and --prior-trans");
+  expect_usage_error("sweep --overlap 0 " + kOut, "--overlap: '0' is outside");
+  expect_usage_error("sweep --jcbb-confidence 1 " + kOut, "--jcbb-confidence");
 }
 
 TEST(Cli, MalformedDumpNamesFileAndLine) {
@@ -64,8 +69,10 @@ TEST(Cli, MalformedDumpNamesFileAndLine) {
 TEST(Cli, ListAndHelp) {
   const CliRun list = run("list");
   EXPECT_EQ(list.code, 0);
-  EXPECT_NE(list.output.find("clique"), std::string::npos);
-  EXPECT_NE(list.output.find("ransac"), std::string::npos);
+  for (const char* name : {"clique", "ransac", "lo-ransac", "jcbb", "pcl-ransac", "open3d-ransac",
+                           "generators", "rigid-group", "bev-orb"}) {
+    EXPECT_NE(list.output.find(name), std::string::npos) << name;
+  }
   for (const char* cmd : {"sweep --help", "run --help", "list --help", "--help"}) {
     const CliRun r = run(cmd);
     EXPECT_EQ(r.code, 0) << cmd;
@@ -140,3 +147,22 @@ TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
 }
 
 }  // namespace
+
+TEST(Cli, StructuredSweepWithPriorsRecordsGeneratorAndShape) {
+  const fs::path out = fs::temp_directory_path() / "vb_cli_structured.json";
+  fs::remove(out);
+  const CliRun r = run(
+      "sweep --generator rigid-group --group-ratio 0.4 --solvers jcbb,lo-ransac --n 80 "
+      "--outliers 0.5 --trials 2 --prior-rot-deg 1 --prior-trans 0.2 --quiet --out " +
+      out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(out);
+  const auto doc = nlohmann::json::parse(in);
+  EXPECT_EQ(doc["parameters"]["sweep"]["generator"], "rigid-group");
+  EXPECT_EQ(doc["parameters"]["sweep"]["generator_shape"]["group_ratio"], 0.4);
+  EXPECT_EQ(doc["parameters"]["sweep"]["prior_sigma_trans"], 0.2);
+  ASSERT_EQ(doc["results"].size(), 4u);
+  for (const auto& row : doc["results"]) EXPECT_EQ(row["generator"], "rigid-group");
+  for (const auto& agg : doc["aggregates"]) EXPECT_EQ(agg["generator"], "rigid-group");
+  fs::remove(out);
+}
