@@ -276,6 +276,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
       .add("anisotropy", "A", "5", "anisotropic: noise along the sensor ray / across it")
       .add("near-radius", "M", "1", "near-true, bev-orb: outliers this far from the truth [m]")
       .add("cell", "M", "0.5", "bev-orb: bird's-eye-view cell size [m]")
+      .add("score-separation", "D", "1",
+           "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none")
       .add("prior-rot-deg", "DEG", "0",
            "give each set a pose prior: rotation sigma per axis [deg] (with --prior-trans)")
       .add("prior-trans", "M", "0", "pose prior translation sigma per axis [m]");
@@ -304,6 +306,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.shape.anisotropy = o.real("anisotropy", 1.0, 1e9);
   c.shape.near_radius = o.real("near-radius", 1e-9, 1e9);
   c.shape.cell = o.real("cell", 1e-9, 1e9);
+  c.shape.score_separation = o.real("score-separation", -1e9, 1e9);
   check_generator(c.shape.kind, c.dims);
   c.prior_sigma_rot = o.real("prior-rot-deg", 0.0, 180.0) * M_PI / 180.0;
   c.prior_sigma_trans = o.real("prior-trans", 0.0, 1e9);
@@ -324,7 +327,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
                            {"tail_dof", c.shape.tail_dof},
                            {"anisotropy", c.shape.anisotropy},
                            {"near_radius", c.shape.near_radius},
-                           {"cell", c.shape.cell}}},
+                           {"cell", c.shape.cell},
+                           {"score_separation", c.shape.score_separation}}},
                          {"prior_sigma_rot_deg", c.prior_sigma_rot * 180.0 / M_PI},
                          {"prior_sigma_trans", c.prior_sigma_trans},
                          {"dims", c.dims},

@@ -253,6 +253,8 @@ void SyntheticParams::validate() const {
   require(near_radius > 0.0 && std::isfinite(near_radius), "near_radius", near_radius,
           "a finite value > 0");
   require(cell > 0.0 && std::isfinite(cell), "cell", cell, "a finite value > 0");
+  require(std::isfinite(score_separation), "score_separation", score_separation,
+          "a finite value (< 0 = no scores)");
 }
 
 template <int Dim>
@@ -288,6 +290,14 @@ LabeledSet<Dim> make_synthetic(const SyntheticParams& params) {
     fill_cube_kinds(params, draw, T, set);
   }
   set.truth.T_target_source = T;
+  if (params.score_separation >= 0.0) {
+    std::mt19937_64 rng(derive_seed(params.seed, {0x53434f52u}));
+    std::normal_distribution<double> g(0.0, 1.0);
+    set.corr.score.resize(static_cast<std::size_t>(params.n));
+    for (std::size_t i = 0; i < set.corr.score.size(); ++i) {
+      set.corr.score[i] = params.score_separation * set.truth.labels[i] + g(rng);
+    }
+  }
   return set;
 }
 

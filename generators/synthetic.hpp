@@ -26,7 +26,11 @@ struct SyntheticParams {
   double anisotropy = 5.0;    ///< anisotropic: sigma along the sensor ray / across it, >= 1
   double near_radius = 1.0;   ///< near-true and bev-orb: outliers lie this far from the truth [m]
   double cell = 0.5;          ///< bev-orb: bird's-eye-view cell size [m]
-  void validate() const;      ///< throws std::invalid_argument naming the field and value
+  /// Match scores as a descriptor matcher would give them: score = separation * label + N(0, 1),
+  /// so inliers tend to score higher (PROSAC's input); < 0 = no scores. Drawn from their own
+  /// stream, so the points do not depend on it.
+  double score_separation = 1.0;
+  void validate() const;  ///< throws std::invalid_argument naming the field and value
 };
 
 struct GeneratorInfo {

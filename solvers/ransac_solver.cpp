@@ -147,14 +147,23 @@ class Engine {
       for (int h = 0; h < count && t < needed; ++h, ++t) {
         ++result.counters.iterations;
         const Hypothesis& hyp = hyps[static_cast<std::size_t>(h)];
-        if (!hyp.valid || !better(hyp.score, best_score_)) continue;
+        if (!hyp.valid || !better(hyp.score, best_score_)) {
+          // PROSAC: the pool grew, so the best model's pool ratio may now end the search.
+          if (v_.adaptive && has_best() && hyp.pool != counted_pool_) {
+            needed = adaptive_count(hyp.pool);
+          }
+          continue;
+        }
         best_T_ = hyp.T;
         best_score_ = hyp.score;
         if (v_.local_optimisation) {
           ++result.counters.local_optimisations;
           local_optimisation(t);
         }
-        if (v_.adaptive) needed = adaptive_count(hyp.pool);
+        if (v_.adaptive) {
+          best_inliers_ = -1;  // a new model: recount
+          needed = adaptive_count(hyp.pool);
+        }
       }
     }
     result.times.search_ms = search_clock.ms();
@@ -284,17 +293,27 @@ class Engine {
     }
   }
 
-  /// k = log(1 - p) / log(1 - w^s) with w the best model's inlier ratio (within the PROSAC pool
-  /// when that is higher), capped at ransac_iterations.
-  long long adaptive_count(int pool) const {
-    const int inliers = inlier_count(best_T_);
-    double w = double(inliers) / n_;
-    if (!schedule_.empty()) {
-      int in_pool = 0;
-      for (int i : consensus_set(corr_, best_T_, params_.inlier_threshold)) {
-        in_pool += rank_of(i) < pool;
+  /// k = log(1 - p) / log(1 - w^s) with w the best model's inlier ratio, capped at
+  /// ransac_iterations. PROSAC draws from its pool, so there w is the ratio within the pool when
+  /// that is higher -- but only once the pool consensus reaches the accept threshold (our stand-in
+  /// for Chum & Matas's non-randomness test): a tiny pool is explained by any wrong model.
+  long long adaptive_count(int pool) {
+    counted_pool_ = pool;
+    if (best_inliers_ < 0) {  // once per model: its inlier count and, for PROSAC, their ranks
+      best_inliers_ = inlier_count(best_T_);
+      best_ranks_.clear();
+      if (!schedule_.empty()) {
+        for (int i : consensus_set(corr_, best_T_, params_.inlier_threshold)) {
+          best_ranks_.push_back(rank_of(i));
+        }
+        std::sort(best_ranks_.begin(), best_ranks_.end());
       }
-      w = std::max(w, double(in_pool) / pool);
+    }
+    double w = double(best_inliers_) / n_;
+    if (!schedule_.empty()) {
+      const auto in_pool = static_cast<int>(
+          std::lower_bound(best_ranks_.begin(), best_ranks_.end(), pool) - best_ranks_.begin());
+      if (in_pool >= params_.accept_threshold(Dim)) w = std::max(w, double(in_pool) / pool);
     }
     const double miss = 1.0 - std::pow(std::min(w, 1.0), Dim);
     const long long cap = params_.ransac_iterations;
@@ -325,6 +344,9 @@ class Engine {
   mutable std::vector<int> rank_;    ///< PROSAC: position of each index in order_
   Rigid<Dim> best_T_ = Rigid<Dim>::Identity();
   Score best_score_ = kNone;
+  int best_inliers_ = -1;        ///< inlier count of best_T_; -1 = not counted yet
+  std::vector<int> best_ranks_;  ///< PROSAC: score ranks of best_T_'s consensus, ascending
+  int counted_pool_ = -1;        ///< pool size of the last adaptive count
 };
 
 class RansacSolver : public SolverBase<RansacSolver> {

@@ -151,10 +151,10 @@ TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
 TEST(Cli, StructuredSweepWithPriorsRecordsGeneratorAndShape) {
   const fs::path out = fs::temp_directory_path() / "vb_cli_structured.json";
   fs::remove(out);
-  const CliRun r = run(
-      "sweep --generator rigid-group --group-ratio 0.4 --solvers jcbb,lo-ransac --n 80 "
-      "--outliers 0.5 --trials 2 --prior-rot-deg 1 --prior-trans 0.2 --quiet --out " +
-      out.string());
+  const CliRun r =
+      run("sweep --generator rigid-group --group-ratio 0.4 --solvers jcbb,lo-ransac --n 80 "
+          "--outliers 0.5 --trials 2 --prior-rot-deg 1 --prior-trans 0.2 --quiet --out " +
+          out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(out);
   const auto doc = nlohmann::json::parse(in);

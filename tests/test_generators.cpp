@@ -236,3 +236,26 @@ TEST(Generators, PosePriorHasTheStatedSpread3D) { prior_has_the_stated_spread<3>
 
 }  // namespace
 }  // namespace verifybench
+
+namespace verifybench {
+namespace {
+
+TEST(Generators, ScoresSeparateInliersByTheStatedMargin) {
+  SyntheticParams p;
+  p.n = 4000;
+  p.outlier_ratio = 0.5;
+  p.score_separation = 1.5;
+  const auto set = make_synthetic<3>(p);
+  ASSERT_EQ(set.corr.score.size(), 4000u);
+  double in = 0, out = 0;
+  for (std::size_t i = 0; i < 4000; ++i) (set.truth.labels[i] ? in : out) += set.corr.score[i];
+  EXPECT_NEAR(in / 2000 - out / 2000, 1.5, 0.1);  // standard error of the difference: 0.03
+  // The points do not depend on the scores.
+  p.score_separation = -1;
+  const auto bare = make_synthetic<3>(p);
+  EXPECT_TRUE(bare.corr.score.empty());
+  EXPECT_TRUE(bare.corr.target.isApprox(set.corr.target, 0.0));
+}
+
+}  // namespace
+}  // namespace verifybench

@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+"""Compact robustness tables from verifybench sweep reports.
+
+usage: robustness_table.py REPORT.json [REPORT.json ...]
+
+For each (generator, dimension, n) found in the reports' aggregates, one markdown table: a row per
+solver, a column per outlier ratio, each cell "success rate / median time in ms" (success as the
+report defines it; "-" when the point has no ground truth). Nothing is recomputed.
+"""
+import json
+import sys
+
+
+def fail(msg):
+    print(f"robustness_table: error: {msg}", file=sys.stderr)
+    sys.exit(2)
+
+
+def main(paths):
+    if not paths:
+        fail("no report given (usage: robustness_table.py REPORT.json [...])")
+    groups = {}
+    for path in paths:
+        try:
+            with open(path) as f:
+                doc = json.load(f)
+        except (OSError, json.JSONDecodeError) as e:
+            fail(f"{path}: {e}")
+        for a in doc.get("aggregates", []):
+            if a.get("outlier_ratio") is None:
+                continue
+            key = (a.get("generator") or "uniform", a["dim"], a["n"])
+            groups.setdefault(key, {}).setdefault(a["solver"], {})[a["outlier_ratio"]] = a
+    if not groups:
+        fail("no sweep aggregates in the reports")
+    for (gen, dim, n), by_solver in groups.items():
+        ratios = sorted({r for cells in by_solver.values() for r in cells})
+        print(f"\n**{gen}, {dim}D, n = {n}** (success / median ms)\n")
+        print("| solver | " + " | ".join(f"{r:g}" for r in ratios) + " |")
+        print("|---|" + "---|" * len(ratios))
+        for solver, cells in by_solver.items():
+            row = []
+            for r in ratios:
+                a = cells.get(r)
+                if a is None:
+                    row.append("")
+                    continue
+                s = a.get("success_rate")
+                t = a.get("median_time_ms")
+                limited = " (T)" if a.get("time_limited") else ""
+                row.append(("-" if s is None else f"{s:.2f}") + " / " +
+                           ("-" if t is None else f"{t:.3g}") + limited)
+            print(f"| {solver} | " + " | ".join(row) + " |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
