@@ -56,6 +56,10 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
   expect_usage_error("sweep --prior-rot-deg 2 " + kOut, "--prior-rot-deg and --prior-trans");
   expect_usage_error("sweep --overlap 0 " + kOut, "--overlap: '0' is outside");
   expect_usage_error("sweep --jcbb-confidence 1 " + kOut, "--jcbb-confidence");
+  expect_usage_error("extract --source /nonexistent/a.bin --target /nonexistent/b.bin --out /tmp/x",
+                     "/nonexistent/a.bin: no such file");
+  expect_usage_error("extract --pipeline 4d --source a --target b --out /tmp/x", "is not 3d or 2d");
+  expect_usage_error("extract --source a.bin --out /tmp/x", "--target is required");
 }
 
 TEST(Cli, MalformedDumpNamesFileAndLine) {

@@ -1,0 +1,22 @@
+#pragma once
+// Point clouds for the extraction pipelines: KITTI .bin (float32 x y z reflectance), .pcd and
+// .ply (through PCL's readers), and 4x4 (or 3x4) row-major ground-truth transforms.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "core/correspondences.hpp"
+
+namespace verifybench {
+
+using Cloud = std::vector<Eigen::Vector3f>;
+
+/// By extension (.bin, .pcd, .ply). Throws InputError (generators/dump_reader.hpp) naming the
+/// file and what is wrong: unreadable, a size that is not whole records, a non-finite coordinate
+/// (with its point index), or no points at all.
+Cloud read_cloud(const std::string& path);
+
+/// Twelve or sixteen numbers, row-major; the rotation must be orthonormal with det +1 (1e-4).
+Rigid<3> read_transform(const std::string& path);
+
+}  // namespace verifybench

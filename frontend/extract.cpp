@@ -1,0 +1,141 @@
+#include "frontend/extract.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "solvers/timer.hpp"
+
+namespace verifybench {
+
+using json = nlohmann::json;
+
+namespace {
+
+Rigid<2> planar(const Rigid<3>& T) {
+  Rigid<2> out = Rigid<2>::Identity();
+  const double yaw = std::atan2(T.linear()(1, 0), T.linear()(0, 0));
+  out.linear() = Eigen::Rotation2Dd(yaw).toRotationMatrix();
+  out.translation() = T.translation().head<2>();
+  return out;
+}
+
+template <int Dim>
+LabeledSet<Dim> assemble(const Features& s, const Features& t,
+                         const std::vector<std::pair<int, BinaryMatch>>& m,
+                         const std::optional<Rigid<Dim>>& T, double label_threshold) {
+  LabeledSet<Dim> set;
+  const auto n = static_cast<Eigen::Index>(m.size());
+  set.corr.source.resize(Dim, n);
+  set.corr.target.resize(Dim, n);
+  set.corr.score.resize(m.size());
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    set.corr.source.col(i) = s.points[static_cast<std::size_t>(m[k].first)].head<Dim>();
+    set.corr.target.col(i) = t.points[static_cast<std::size_t>(m[k].second.index)].head<Dim>();
+    set.corr.score[k] = -m[k].second.distance;  // higher = better
+  }
+  if (T) {
+    set.truth.T_target_source = *T;
+    set.truth.labels.resize(m.size());
+    for (Eigen::Index i = 0; i < n; ++i) {
+      set.truth.labels[static_cast<std::size_t>(i)] =
+          (*T * set.corr.source.col(i) - set.corr.target.col(i)).norm() < label_threshold;
+    }
+  }
+  return set;
+}
+
+}  // namespace
+
+Features extract_features(const Cloud& cloud, const ExtractParams& params) {
+  if (params.pipeline == "3d") return features_3d(cloud, params.p3);
+  if (params.pipeline == "2d") return features_2d(cloud, params.p2);
+  throw std::invalid_argument("pipeline '" + params.pipeline + "' is unknown; expected 3d or 2d");
+}
+
+Dump match_features(const Features& source, const Features& target,
+                    const std::optional<Rigid<3>>& T_target_source, const ExtractParams& params) {
+  if (params.max_hamming < 0 || !(params.label_threshold > 0.0)) {
+    throw std::invalid_argument("max_hamming must be >= 0 and label_threshold > 0");
+  }
+  if (source.descriptors.bits != target.descriptors.bits) {
+    throw std::invalid_argument("source and target descriptors differ in length");
+  }
+  StopWatch clock;
+  HbstTree tree(std::max(1, target.descriptors.bits), params.hbst);
+  tree.insert(target.descriptors);
+  const double build_ms = clock.ms();
+  StopWatch query_clock;
+  std::vector<std::pair<int, BinaryMatch>> matches;
+  for (int i = 0; i < source.descriptors.size(); ++i) {
+    const BinaryMatch m =
+        tree.nearest(source.descriptors.row(i), params.max_hamming, params.exact_matching);
+    if (m.index >= 0) matches.emplace_back(i, m);
+  }
+  const double query_ms = query_clock.ms();
+
+  Dump dump;
+  if (source.dim == 3) {
+    dump.set = assemble<3>(source, target, matches, T_target_source, params.label_threshold);
+  } else {
+    std::optional<Rigid<2>> T2;
+    if (T_target_source) T2 = planar(*T_target_source);
+    dump.set = assemble<2>(source, target, matches, T2, params.label_threshold);
+  }
+  if (T_target_source) dump.label_threshold = params.label_threshold;
+  const auto& p3 = params.p3;
+  const auto& p2 = params.p2;
+  json pipeline = params.pipeline == "3d"
+                      ? json{{"name", "3d: voxel grid, ISS, normals, SHOT, B-SHOT"},
+                             {"voxel", p3.voxel},
+                             {"iss_salient_radius", p3.salient_radius},
+                             {"iss_non_max_radius", p3.non_max_radius},
+                             {"iss_gamma21", p3.gamma21},
+                             {"iss_gamma32", p3.gamma32},
+                             {"iss_min_neighbors", p3.min_neighbors},
+                             {"normal_radius", p3.normal_radius},
+                             {"shot_radius", p3.shot_radius}}
+                      : json{{"name", "2d: bird's-eye-view density image, ORB"},
+                             {"cell", p2.bev.cell},
+                             {"min_fraction", p2.bev.min_fraction},
+                             {"range", p2.bev.range},
+                             {"orb_features", p2.orb_features}};
+  dump.provenance = {
+      {"tool", "verifybench extract"},
+      {"pipeline", pipeline},
+      {"matcher",
+       {{"name",
+         params.exact_matching ? "HBST, exact (backtracking)" : "HBST, one leaf (approximate)"},
+        {"max_hamming", params.max_hamming},
+        {"max_leaf_size", params.hbst.max_leaf_size},
+        {"tree_depth", tree.depth()},
+        {"score", "minus the Hamming distance [bits]"}}},
+      {"counts",
+       {{"source", source.counts}, {"target", target.counts}, {"matches", matches.size()}}},
+      {"ms",
+       {{"source", source.ms},
+        {"target", target.ms},
+        {"hbst_build", build_ms},
+        {"hbst_match", query_ms}}}};
+  return dump;
+}
+
+Dump extract(const std::string& source_cloud, const std::string& target_cloud,
+             const std::optional<std::string>& transform_file, const ExtractParams& params) {
+  std::optional<Rigid<3>> T;
+  if (transform_file) T = read_transform(*transform_file);
+  const Cloud src = read_cloud(source_cloud);
+  const Cloud tgt = read_cloud(target_cloud);
+  StopWatch clock;
+  const Features fs = extract_features(src, params);
+  const Features ft = extract_features(tgt, params);
+  Dump dump = match_features(fs, ft, T, params);
+  dump.provenance["inputs"] = {
+      {"source", source_cloud},
+      {"target", target_cloud},
+      {"T_target_source", transform_file ? json(*transform_file) : json(nullptr)}};
+  dump.provenance["ms"]["total"] = clock.ms();
+  return dump;
+}
+
+}  // namespace verifybench

@@ -1,0 +1,40 @@
+#pragma once
+// `verifybench extract`: two scans (and optionally their ground-truth motion) in, a correspondence
+// dump out. Features from the 3D or 2D pipeline on both scans, then every source descriptor is
+// matched to its nearest target descriptor by Hamming distance through an HBST built
+// incrementally over the target's descriptors; a match is kept within max_hamming bits. Labels,
+// when the ground truth is given: 1 when ||T m - q|| < label_threshold.
+#include <optional>
+#include <string>
+
+#include "frontend/features.hpp"
+#include "frontend/hbst.hpp"
+#include "generators/dump_format.hpp"
+
+namespace verifybench {
+
+struct ExtractParams {
+  std::string pipeline = "3d";  ///< "3d" (ISS + B-SHOT) or "2d" (BEV + ORB)
+  Pipeline3dParams p3;
+  Pipeline2dParams p2;
+  int max_hamming = 50;         ///< keep a match within this many bits
+  bool exact_matching = false;  ///< HBST with backtracking (= brute force) instead of one leaf
+  HbstParams hbst;
+  double label_threshold = 1.0;  ///< [m]; the paper's eps in 3D
+};
+
+/// One scan's features, by pipeline.
+Features extract_features(const Cloud& cloud, const ExtractParams& params);
+
+/// Source features matched into target features; T (3D, for the 2D pipeline reduced to its yaw
+/// and x-y translation) labels them. Provenance: inputs are the caller's; this adds parameters,
+/// counts and timings.
+Dump match_features(const Features& source, const Features& target,
+                    const std::optional<Rigid<3>>& T_target_source, const ExtractParams& params);
+
+/// The whole command: reads the clouds and the optional transform file (`T_target_source`,
+/// 12 or 16 numbers), records the input paths in the provenance.
+Dump extract(const std::string& source_cloud, const std::string& target_cloud,
+             const std::optional<std::string>& transform_file, const ExtractParams& params);
+
+}  // namespace verifybench

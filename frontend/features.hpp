@@ -1,0 +1,42 @@
+#pragma once
+// The paper's two front ends, from one scan to keypoints with binary descriptors:
+//   3D: voxel grid -> ISS keypoints -> normals -> SHOT -> B-SHOT (352 bits)       (PCL)
+//   2D: bird's-eye-view density image -> ORB keypoints and descriptors (256 bits) (OpenCV)
+// Stage counts and timings come back with the features, for the dump's provenance.
+#include <map>
+#include <string>
+
+#include "frontend/bev.hpp"
+#include "frontend/binary.hpp"
+
+namespace verifybench {
+
+struct Pipeline3dParams {
+  double voxel = 0.5;           ///< voxel grid leaf [m]
+  double salient_radius = 3.0;  ///< ISS salient radius [m]
+  double non_max_radius = 2.0;  ///< ISS non-maximum suppression radius [m]
+  double gamma21 = 0.975;       ///< ISS eigenvalue ratio thresholds
+  double gamma32 = 0.975;
+  int min_neighbors = 5;       ///< ISS minimum neighbours
+  double normal_radius = 1.0;  ///< normal estimation radius [m]
+  double shot_radius = 2.0;    ///< SHOT support radius [m]
+};
+
+struct Pipeline2dParams {
+  BevParams bev;            ///< 0.5 m cells, 5% occupancy floor, 50 m range
+  int orb_features = 1000;  ///< ORB: most keypoints kept
+};
+
+struct Features {
+  int dim = 3;
+  std::vector<Eigen::Vector3d> points;   ///< keypoints, metric (2D: z = 0)
+  BinaryDescriptors descriptors;         ///< one per point
+  std::map<std::string, double> counts;  ///< e.g. points, voxels, keypoints, descriptors
+  std::map<std::string, double> ms;      ///< stage timings
+};
+
+/// Throws std::invalid_argument for a bad parameter (named, with the value).
+Features features_3d(const Cloud& cloud, const Pipeline3dParams& params);
+Features features_2d(const Cloud& cloud, const Pipeline2dParams& params);
+
+}  // namespace verifybench

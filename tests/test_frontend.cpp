@@ -1,0 +1,344 @@
+// The front end against oracles: B-SHOT codes worked out by hand from the rule, HBST against
+// brute-force Hamming search, the BEV image of a drawn point set counted by hand, the dump format
+// round trip, and extraction on a drawn scene with a known motion (the motion is recovered).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "core/metrics.hpp"
+#include "frontend/bev.hpp"
+#include "frontend/bshot.hpp"
+#include "frontend/extract.hpp"
+#include "frontend/hbst.hpp"
+#include "solvers/registry.hpp"
+
+namespace verifybench {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(Bshot, CodesFollowTheNinetyPercentRule) {
+  struct Case {
+    float v[4];
+    std::uint8_t code;
+  };
+  const Case cases[] = {
+      {{0, 0, 0, 0}, 0b0000},                  // case A: empty
+      {{0.95f, 0.05f, 0, 0}, 0b0001},          // B: v0 holds 95%
+      {{0, 0, 1, 0}, 0b0100},                  // B: v2 alone
+      {{0.5f, 0.45f, 0.05f, 0}, 0b0011},       // C: v0 + v1 = 95%
+      {{0.05f, 0, 0.5f, 0.45f}, 0b1100},       // C: v2 + v3
+      {{0.46f, 0.02f, 0.02f, 0.5f}, 0b1001},   // C: v0 + v3 (after 01, 12, 23 fail)
+      {{0.48f, 0.03f, 0.46f, 0.03f}, 0b0101},  // C: v0 + v2 (last pair tried)
+      {{0.3f, 0.3f, 0.35f, 0.05f}, 0b0111},    // D: v0 + v1 + v2 = 95%
+      {{0.02f, 0.33f, 0.33f, 0.32f}, 0b1110},  // D: v1 + v2 + v3 = 98%
+      {{0.25f, 0.25f, 0.25f, 0.25f}, 0b1111},  // E: no group of three reaches 90%
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(bshot_code(c.v), c.code) << c.v[0] << " " << c.v[1] << " " << c.v[2] << " " << c.v[3];
+  }
+  // A whole descriptor: group g lands in bits 4g..4g+3, the last 32 bits stay zero.
+  float shot[kShotLength] = {};
+  shot[0] = 1.0f;                                       // group 0 -> 0001
+  shot[4 * 17 + 3] = 2.0f;                              // group 17 -> 1000 at bits 68..71
+  for (int k = 0; k < 4; ++k) shot[4 * 87 + k] = 1.0f;  // group 87 -> 1111 at bits 348..351
+  std::uint64_t out[6];
+  binarize_shot(shot, out);
+  EXPECT_EQ(out[0], 0x1u);
+  EXPECT_EQ(out[1], std::uint64_t{0x8} << (68 - 64));
+  EXPECT_EQ(out[5], std::uint64_t{0xF} << (348 - 320));
+  EXPECT_EQ(out[2] | out[3] | out[4], 0u);
+}
+
+BinaryDescriptors random_descriptors(int count, int bits, std::mt19937_64& rng, double p_one) {
+  BinaryDescriptors d(bits);
+  std::bernoulli_distribution one(p_one);
+  for (int i = 0; i < count; ++i) {
+    auto* row = d.add();
+    for (int b = 0; b < bits; ++b) {
+      if (one(rng)) row[b / 64] |= std::uint64_t{1} << (b % 64);
+    }
+  }
+  return d;
+}
+
+TEST(Hbst, ExactModeIsBruteForceAndLeafModeNeverBeatsIt) {
+  std::mt19937_64 rng(7);
+  for (int bits : {256, 352}) {
+    const auto base = random_descriptors(3000, bits, rng, 0.5);
+    // Queries: noisy copies of stored descriptors (some within the threshold) and random ones.
+    BinaryDescriptors queries(bits);
+    std::uniform_int_distribution<int> pick(0, base.size() - 1), flip(0, bits - 1);
+    for (int q = 0; q < 300; ++q) {
+      auto* row = queries.add();
+      const int from = pick(rng);
+      std::copy(base.row(from), base.row(from) + base.words(), row);
+      const int flips = q % 3 == 0 ? 200 : q % 60;
+      for (int f = 0; f < flips; ++f) {
+        const int b = flip(rng);
+        row[b / 64] ^= std::uint64_t{1} << (b % 64);
+      }
+    }
+    HbstTree tree(bits, HbstParams{16, 64});
+    // Inserted in two batches: incremental insertion splits leaves as they fill.
+    BinaryDescriptors first(bits), second(bits);
+    first.data.assign(base.data.begin(), base.data.begin() + 1500 * base.words());
+    second.data.assign(base.data.begin() + 1500 * base.words(), base.data.end());
+    tree.insert(first);
+    tree.insert(second);
+    ASSERT_EQ(tree.size(), 3000);
+    EXPECT_GT(tree.depth(), 4);
+    int leaf_hits = 0, truth_hits = 0, near = 0;
+    for (int q = 0; q < queries.size(); ++q) {
+      const BinaryMatch truth = brute_force_nearest(base, queries.row(q), 50);
+      const BinaryMatch exact = tree.nearest(queries.row(q), 50, true);
+      EXPECT_EQ(exact.index, truth.index) << "query " << q;
+      EXPECT_EQ(exact.distance, truth.distance) << "query " << q;
+      const BinaryMatch leaf = tree.nearest(queries.row(q), 50, false);
+      if (leaf.index >= 0) {
+        EXPECT_GE(leaf.distance, truth.distance);
+        EXPECT_LE(leaf.distance, 50);
+        EXPECT_EQ(hamming(base.row(leaf.index), queries.row(q), base.words()), leaf.distance);
+        if (q % 3 != 0 && q % 60 <= 8) leaf_hits += leaf.index == truth.index;
+      }
+      truth_hits += truth.index >= 0;
+      near += q % 3 != 0 && q % 60 <= 8;
+    }
+    EXPECT_GT(truth_hits, 100);
+    // One leaf misses a copy whenever a flipped bit is one the path splits on: with <= 8 of
+    // 256+ bits flipped and a depth near 8, most near copies are still found.
+    EXPECT_GT(leaf_hits, near / 2) << leaf_hits << " of " << near;
+  }
+}
+
+TEST(Bev, CountsAndScalesADrawnPointSet) {
+  Cloud cloud;
+  for (int k = 0; k < 40; ++k) cloud.emplace_back(0.1f, 0.2f, float(k));  // cell (100, 100): 40
+  for (int k = 0; k < 10; ++k) cloud.emplace_back(-0.3f, 0.2f, 0.0f);     // cell (99, 100): 10
+  cloud.emplace_back(-49.9f, -49.9f, 0.0f);  // cell (0, 0): 1, under 5% of 40
+  cloud.emplace_back(60.0f, 0.0f, 0.0f);     // outside the 50 m window
+  const BevImage img = make_bev(cloud, BevParams{});
+  ASSERT_EQ(img.size, 200);
+  EXPECT_EQ(img.counts[100 * 200 + 100], 40);
+  EXPECT_EQ(img.pixels[100 * 200 + 100], 255);
+  EXPECT_EQ(img.counts[100 * 200 + 99], 10);
+  EXPECT_EQ(img.pixels[100 * 200 + 99], 64);  // round(255 * 10 / 40)
+  EXPECT_EQ(img.counts[0], 1);
+  EXPECT_EQ(img.pixels[0], 0);  // dropped: 1 < 0.05 * 40
+  int total = 0;
+  for (int c : img.counts) total += c;
+  EXPECT_EQ(total, 51);  // the point outside is not counted
+  EXPECT_TRUE(img.metric(100.5, 100.5).isApprox(Eigen::Vector2d(0.25, 0.25)));
+  EXPECT_THROW(make_bev(cloud, BevParams{0.0, 0.05, 50}), std::invalid_argument);
+}
+
+/// A street: ground, building blocks with windows (ISS corners), poles, sampled every 0.1 m.
+Cloud drawn_street(std::mt19937_64& rng) {
+  Cloud c;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (double x = -30; x < 30; x += 0.25)
+    for (double y = -12; y < 12; y += 0.25) c.emplace_back(x + 0.05 * u(rng), y, -1.7f);
+  for (int b = 0; b < 10; ++b) {  // blocks along both sides, different sizes
+    const double x0 = -28 + 6 * b + 2 * u(rng), side = b % 2 ? 8.0 : -8.0;
+    const double w = 2 + 3 * u(rng), h = 3 + 6 * u(rng), depth = 1.5 + 2 * u(rng);
+    for (double x = x0; x < x0 + w; x += 0.1)
+      for (double z = -1.7; z < h; z += 0.1) {
+        c.emplace_back(x, side, z);
+        c.emplace_back(x, side + (side > 0 ? depth : -depth), z);
+      }
+    for (double y = 0; y < depth; y += 0.1)
+      for (double z = -1.7; z < h; z += 0.1) {
+        c.emplace_back(x0, side + (side > 0 ? y : -y), z);
+        c.emplace_back(x0 + w, side + (side > 0 ? y : -y), z);
+      }
+  }
+  for (int p = 0; p < 12; ++p) {  // poles
+    const double x = -27 + 4.7 * p, y = (p % 2 ? 5.0 : -5.0) + u(rng);
+    for (double z = -1.7; z < 3 + u(rng); z += 0.05) c.emplace_back(x, y, z);
+  }
+  return c;
+}
+
+Cloud moved(const Cloud& c, const Rigid<3>& T, std::mt19937_64& rng, double noise) {
+  std::normal_distribution<double> g(0.0, noise);
+  Cloud out;
+  out.reserve(c.size());
+  for (const auto& p : c) {
+    const Eigen::Vector3d q = T * p.cast<double>() + Eigen::Vector3d(g(rng), g(rng), g(rng));
+    out.push_back(q.cast<float>());
+  }
+  return out;
+}
+
+TEST(Extract, RecoversAKnownMotionFromADrawnStreet3D) {
+  register_builtin_solvers();
+  std::mt19937_64 rng(3);
+  const Cloud source = drawn_street(rng);
+  Rigid<3> T = Rigid<3>::Identity();
+  T.linear() = Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(1.5, -0.8, 0.1);
+  const Cloud target = moved(source, T, rng, 0.01);
+  ExtractParams p;
+  const Features fs = extract_features(source, p), ft = extract_features(target, p);
+  EXPECT_GT(fs.counts.at("keypoints"), 20);
+  EXPECT_EQ(fs.descriptors.size(), static_cast<int>(fs.points.size()));
+  const Dump dump = match_features(fs, ft, T, p);
+  const auto& set = std::get<LabeledSet<3>>(dump.set);
+  const int labelled =
+      static_cast<int>(std::count(set.truth.labels.begin(), set.truth.labels.end(), 1));
+  EXPECT_GE(labelled, 5);
+  SolverParams sp;
+  sp.eps = 1.0;
+  sp.inlier_threshold = 1.0;
+  const auto r = SolverRegistry::create("clique")->solve(set.corr, sp);
+  ASSERT_TRUE(r.accepted);
+  EXPECT_LT(rotation_error_deg(r.T_target_source, T), 2.0);
+  EXPECT_LT(translation_error(r.T_target_source, T), 0.5);
+}
+
+TEST(Extract, RecoversAKnownMotionFromADrawnStreet2D) {
+  register_builtin_solvers();
+  std::mt19937_64 rng(4);
+  const Cloud source = drawn_street(rng);
+  Rigid<3> T = Rigid<3>::Identity();
+  T.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(2.0, 1.0, 0.0);
+  const Cloud target = moved(source, T, rng, 0.01);
+  ExtractParams p;
+  p.pipeline = "2d";
+  const Dump dump = match_features(extract_features(source, p), extract_features(target, p), T, p);
+  const auto& set = std::get<LabeledSet<2>>(dump.set);
+  SolverParams sp;
+  sp.eps = 1.0;
+  sp.inlier_threshold = 1.0;
+  const auto r = SolverRegistry::create("clique")->solve(set.corr, sp);
+  ASSERT_TRUE(r.accepted) << r.inliers.size() << " inliers of " << set.corr.size();
+  Rigid<2> T2 = Rigid<2>::Identity();
+  T2.linear() = Eigen::Rotation2Dd(0.3).toRotationMatrix();
+  T2.translation() = Eigen::Vector2d(2.0, 1.0);
+  EXPECT_LT(rotation_error_deg(r.T_target_source, T2), 2.0);
+  EXPECT_LT(translation_error(r.T_target_source, T2), 0.5);
+}
+
+TEST(DumpFormat, RoundTripsEveryField) {
+  LabeledSet<3> s;
+  s.corr.source = Eigen::Matrix3Xd::Random(3, 7) * 50;
+  s.corr.target = Eigen::Matrix3Xd::Random(3, 7) * 50;
+  s.corr.score = {-1, -2, -3, -4.5, 0, 7, 1e-9};
+  s.truth.labels = {1, 0, 1, 0, 0, 1, 1};
+  Rigid<3> T = Rigid<3>::Identity();
+  T.linear() = Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(1, -2, 3);
+  s.truth.T_target_source = T;
+  Dump d;
+  d.set = s;
+  d.label_threshold = 0.75;
+  d.provenance = {{"tool", "test"}};
+  const fs::path dir = fs::temp_directory_path() / "vb_dump_roundtrip";
+  fs::remove_all(dir);
+  write_dump(dir.string(), d);
+  EXPECT_THROW(write_dump(dir.string(), d), std::runtime_error);  // never overwrites
+  const Dump back = read_dump(dir.string());
+  const auto& b = std::get<LabeledSet<3>>(back.set);
+  EXPECT_TRUE(b.corr.source.isApprox(s.corr.source, 1e-15));
+  EXPECT_TRUE(b.corr.target.isApprox(s.corr.target, 1e-15));
+  EXPECT_EQ(b.corr.score, s.corr.score);
+  EXPECT_EQ(b.truth.labels, s.truth.labels);
+  EXPECT_TRUE(b.truth.T_target_source->isApprox(T, 1e-12));
+  EXPECT_EQ(*back.label_threshold, 0.75);
+  EXPECT_EQ(back.provenance["tool"], "test");
+  // A corrupted row names file, line and field.
+  {
+    std::ofstream out(dir / "matches.tsv", std::ios::app);
+    out << "1\t2\t3\t4\t5\tsix\t0\t1\n";
+  }
+  try {
+    read_dump(dir.string());
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("matches.tsv"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 9"), std::string::npos) << m;
+    EXPECT_NE(m.find("zt = 'six'"), std::string::npos) << m;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(CloudIo, MalformedAndEmptyCloudsAreNamedErrors) {
+  const fs::path dir = fs::temp_directory_path() / "vb_clouds";
+  fs::create_directories(dir);
+  auto expect_error = [](const fs::path& p, const std::string& needle) {
+    try {
+      read_cloud(p.string());
+      FAIL() << p;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(p.filename().string()), std::string::npos);
+    }
+  };
+  std::ofstream(dir / "empty.bin", std::ios::binary).flush();
+  expect_error(dir / "empty.bin", "no points");
+  {
+    std::ofstream out(dir / "ragged.bin", std::ios::binary);
+    const float v[5] = {1, 2, 3, 4, 5};
+    out.write(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  expect_error(dir / "ragged.bin", "20 bytes is not a whole number");
+  {
+    std::ofstream out(dir / "nan.bin", std::ios::binary);
+    const float v[8] = {1, 2, 3, 0, 1, std::nanf(""), 3, 0};
+    out.write(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  expect_error(dir / "nan.bin", "point 1 is not finite");
+  std::ofstream(dir / "bad.ply") << "this is not a ply file\n";
+  expect_error(dir / "bad.ply", "could not parse");
+  std::ofstream(dir / "cloud.xyz") << "1 2 3\n";
+  expect_error(dir / "cloud.xyz", "unknown point cloud extension");
+  expect_error(dir / "missing.pcd", "no such file");
+  std::ofstream(dir / "T.txt") << "1 0 0 0 0 1 0 0 0 0 2 0\n";  // scaled, not rigid
+  EXPECT_THROW(read_transform((dir / "T.txt").string()), InputError);
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace verifybench
+
+namespace verifybench {
+namespace {
+
+TEST(Extract, RealKittiPairsAcceptThePositiveAndRejectTheNegative) {
+  const fs::path k00 = fs::path(VERIFYBENCH_SHARED_DATA) / "kitti/00_scans_94_95_198_199";
+  if (!fs::exists(k00)) GTEST_SKIP() << k00 << " not found (real data lives beside the checkout)";
+  register_builtin_solvers();
+  SolverParams sp;  // the paper's setting: eps 1 m, accept at 5 inliers in 3D, 10 in 2D
+  sp.eps = 1.0;
+  sp.inlier_threshold = 1.0;
+  for (const char* pipeline : {"3d", "2d"}) {
+    ExtractParams p;
+    p.pipeline = pipeline;
+    const Dump pos = extract((k00 / "000095.bin").string(), (k00 / "000094.bin").string(),
+                             (k00 / "T_94_95.txt").string(), p);
+    const Dump neg = extract((k00 / "000198.bin").string(), (k00 / "000094.bin").string(),
+                             (k00 / "T_94_198.txt").string(), p);
+    std::visit(
+        [&](const auto& s) {
+          const auto r = SolverRegistry::create("clique")->solve(s.corr, sp);
+          EXPECT_TRUE(r.accepted) << pipeline;
+          EXPECT_LT(rotation_error_deg(r.T_target_source, *s.truth.T_target_source), 3.0);
+          EXPECT_LT(translation_error(r.T_target_source, *s.truth.T_target_source), 0.5);
+        },
+        pos.set);
+    std::visit(
+        [&](const auto& s) {
+          // 58 m apart, ~4% overlap: no labelled inlier, and the verifier must say no.
+          EXPECT_EQ(std::count(s.truth.labels.begin(), s.truth.labels.end(), 1), 0) << pipeline;
+          EXPECT_FALSE(SolverRegistry::create("clique")->solve(s.corr, sp).accepted) << pipeline;
+        },
+        neg.set);
+  }
+}
+
+}  // namespace
+}  // namespace verifybench
