@@ -30,20 +30,24 @@ inline int hamming(const std::uint64_t* a, const std::uint64_t* b, int words) {
   return d;
 }
 
-/// Nearest descriptor of `set` to `query` within `max_distance` by exhaustive search: the
-/// reference every faster matcher is checked against. Ties go to the lowest index; -1 if none.
 struct BinaryMatch {
-  int index = -1;
+  int index = -1;  ///< -1 when nothing is within the threshold
   int distance = 0;
 };
+
+/// Improves `best` (ties: lowest index) with the descriptors `ids[0..count)` of `set`, or with
+/// all of them when `ids` is null. Compiled for POPCNT/AVX2/AVX-512 and baseline x86-64 and picked
+/// at load time (a plain build has no hardware popcount).
+void scan_nearest(const BinaryDescriptors& set, const int* ids, int count,
+                  const std::uint64_t* query, BinaryMatch& best);
+
+/// Nearest descriptor of `set` to `query` within `max_distance` by exhaustive search: the
+/// reference every faster matcher is checked against. Ties go to the lowest index.
 inline BinaryMatch brute_force_nearest(const BinaryDescriptors& set, const std::uint64_t* query,
                                        int max_distance) {
   BinaryMatch best;
   best.distance = max_distance + 1;
-  for (int i = 0; i < set.size(); ++i) {
-    const int d = hamming(set.row(i), query, set.words());
-    if (d < best.distance) best = {i, d};
-  }
+  scan_nearest(set, nullptr, set.size(), query, best);
   if (best.index < 0) best.distance = 0;
   return best;
 }

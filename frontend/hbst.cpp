@@ -97,14 +97,8 @@ int HbstTree::depth() const {
 BinaryMatch HbstTree::nearest(const std::uint64_t* query, int max_distance, bool exact) const {
   BinaryMatch best;
   best.distance = max_distance + 1;
-  const int words = descriptors_.words();
   auto visit_leaf = [&](const Node& leaf) {
-    for (int id : leaf.ids) {
-      const int d = hamming(descriptors_.row(id), query, words);
-      if (d < best.distance || (d == best.distance && best.index >= 0 && id < best.index)) {
-        best = {id, d};
-      }
-    }
+    scan_nearest(descriptors_, leaf.ids.data(), static_cast<int>(leaf.ids.size()), query, best);
   };
   auto query_bit = [&](int b) { return static_cast<int>((query[b / 64] >> (b % 64)) & 1u); };
   // Descend; in exact mode keep the other branch when its bound (split bits that differ from the
