@@ -3,7 +3,7 @@
 
 usage: robustness_table.py REPORT.json [REPORT.json ...]
 
-For each (generator, dimension, n) found in the reports' aggregates, one markdown table: a row per
+For each (generator, dimension, n, pose prior) found in the reports' aggregates, one markdown table: a row per
 solver, a column per outlier ratio, each cell "success rate / median time in ms" (success as the
 report defines it; "-" when the point has no ground truth). Nothing is recomputed.
 """
@@ -26,16 +26,21 @@ def main(paths):
                 doc = json.load(f)
         except (OSError, json.JSONDecodeError) as e:
             fail(f"{path}: {e}")
+        sweep = doc.get("parameters", {}).get("sweep", {})
+        prior = ""
+        if sweep.get("prior_sigma_trans"):
+            prior = (f", pose prior {sweep.get('prior_sigma_rot_deg', 0):g} deg / "
+                     f"{sweep['prior_sigma_trans']:g} m")
         for a in doc.get("aggregates", []):
             if a.get("outlier_ratio") is None:
                 continue
-            key = (a.get("generator") or "uniform", a["dim"], a["n"])
+            key = (a.get("generator") or "uniform", a["dim"], a["n"], prior)
             groups.setdefault(key, {}).setdefault(a["solver"], {})[a["outlier_ratio"]] = a
     if not groups:
         fail("no sweep aggregates in the reports")
-    for (gen, dim, n), by_solver in groups.items():
+    for (gen, dim, n, prior), by_solver in groups.items():
         ratios = sorted({r for cells in by_solver.values() for r in cells})
-        print(f"\n**{gen}, {dim}D, n = {n}** (success / median ms)\n")
+        print(f"\n**{gen}, {dim}D, n = {n}{prior}** (success / median ms)\n")
         print("| solver | " + " | ".join(f"{r:g}" for r in ratios) + " |")
         print("|---|" + "---|" * len(ratios))
         for solver, cells in by_solver.items():
