@@ -51,14 +51,23 @@ struct SearchBudget {
 /// With `recolour`, a vertex that would get a colour >= kmin is first re-numbered into a lower
 /// class when it has a single neighbour there that can move up to another low class (Tomita's
 /// Re-NUMBER in MCS; BBMCR of San Segundo et al. 2013): fewer vertices to branch on.
+/// With `infra` as well, a vertex that neither fits nor re-numbers is absorbed when it has exactly
+/// one neighbour u in a low class C_i and u has no neighbour among v's neighbours in another low
+/// class C_j: a clique through v then misses C_i or C_j, so the low classes plus v still hold no
+/// clique above kmin - 1 (the infra-chromatic bound of BBMCX, San Segundo, Nikolaev & Batsyn
+/// 2015). Each class serves one absorption and is then frozen (re-numbering skips it), so any
+/// set of absorbed vertices keeps that bound: a clique through several of them misses one class
+/// of each disjoint pair.
 class BranchAndBound {
  public:
-  BranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget, bool recolour = false)
+  BranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget, bool recolour = false,
+                 bool infra = false)
       : g_(g),
         W_(g.words()),
         best_size_(incumbent),
         budget_(budget),
-        recolour_(recolour),
+        recolour_(recolour || infra),
+        infra_(infra),
         levels_(static_cast<std::size_t>(g.size()) + 2),
         order_(levels_.size()),
         colour_(levels_.size()),
@@ -106,6 +115,7 @@ class BranchAndBound {
     int k = 0, count = 0, lo = 0, total = 0;
     const int low_classes = recolour_ ? kmin - 1 : 0;  // classes a vertex may be re-numbered into
     if (low_classes > 0) classes_.assign(static_cast<std::size_t>(low_classes) * W_, 0);
+    if (infra_) frozen_.assign(static_cast<std::size_t>(std::max(low_classes, 0)), 0);
     for (;;) {
       while (lo < W_ && U[lo] == 0) ++lo;
       if (lo == W_) break;
@@ -119,7 +129,10 @@ class BranchAndBound {
           Q[w] &= ~(Word{1} << b);
           const Word* N = g_.row(v);
           ++total;
-          if (k >= kmin && low_classes > 1 && renumber(v, low_classes)) continue;
+          if (k >= kmin && low_classes > 1 &&
+              (infra_ ? renumber_or_absorb(v, low_classes) : renumber(v, low_classes))) {
+            continue;
+          }
           for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
           if (k <= low_classes) {
             classes_[static_cast<std::size_t>(k - 1) * W_ + static_cast<std::size_t>(w)] |= Word{1}
@@ -172,6 +185,52 @@ class BranchAndBound {
     return false;
   }
 
+  // BBMCX's step for a vertex v that would open a class >= kmin, in one pass over the low
+  // classes: for each class C_i where v has exactly one neighbour u, and each other class C_j,
+  // re-number (j > i and u has no neighbour in C_j: u moves to C_j, v takes its place) at once;
+  // else remember the first infra-chromatic pair (u has no neighbour among v's neighbours in C_j)
+  // and absorb v with it (see the class comment; the pair's classes are then frozen).
+  bool renumber_or_absorb(int v, int low_classes) {
+    const Word* N = g_.row(v);
+    int absorb_i = -1, absorb_j = -1;
+    for (int i = 0; i < low_classes; ++i) {
+      if (frozen_[static_cast<std::size_t>(i)]) continue;
+      Word* Ci = classes_.data() + static_cast<std::size_t>(i) * W_;
+      int hits = 0, u = -1;
+      for (int x = 0; x < W_ && hits < 2; ++x) {
+        const Word both = Ci[x] & N[x];
+        if (!both) continue;
+        hits += (both & (both - 1)) ? 2 : 1;
+        u = x * kBits + lowest_bit(both);
+      }
+      if (hits != 1) continue;
+      const Word* Nu = g_.row(u);
+      for (int j = 0; j < low_classes; ++j) {
+        if (j == i || frozen_[static_cast<std::size_t>(j)]) continue;
+        Word* Cj = classes_.data() + static_cast<std::size_t>(j) * W_;
+        Word seen = 0, triangle = 0;
+        for (int x = 0; x < W_; ++x) {
+          const Word a = Cj[x] & Nu[x];
+          seen |= a;
+          triangle |= a & N[x];
+        }
+        if (j > i && !seen) {  // Re-NUMBER
+          Ci[u / kBits] &= ~(Word{1} << (u % kBits));
+          Cj[u / kBits] |= Word{1} << (u % kBits);
+          Ci[v / kBits] |= Word{1} << (v % kBits);
+          return true;
+        }
+        if (!triangle && absorb_i < 0) {
+          absorb_i = i;
+          absorb_j = j;
+        }
+      }
+    }
+    if (absorb_i < 0) return false;
+    frozen_[static_cast<std::size_t>(absorb_i)] = frozen_[static_cast<std::size_t>(absorb_j)] = 1;
+    return true;
+  }
+
   void expand(int depth) {
     if (!budget_.spend()) return;
     Word* P = level(depth).data();
@@ -216,6 +275,8 @@ class BranchAndBound {
   int best_size_;
   SearchBudget& budget_;
   bool recolour_;
+  bool infra_;
+  std::vector<char> frozen_;  // infra: low classes already used by an absorption
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;  // candidate set per depth
   std::vector<std::vector<int>> order_, colour_;

@@ -107,9 +107,9 @@ int max_core(const CoreDecomposition& cd) {
 /// BBMC on the subgraph induced by `vertices` (in that order, which is the initial colouring
 /// order); returns a clique larger than `incumbent` in original ids, or an empty vector.
 std::vector<int> search_ordered(const BitGraph& g, const std::vector<int>& vertices, int incumbent,
-                                SearchBudget& budget, bool recolour = false) {
+                                SearchBudget& budget, bool recolour = false, bool infra = false) {
   const BitGraph sub = detail::permuted(g, vertices);
-  BranchAndBound bb(sub, incumbent, budget, recolour);
+  BranchAndBound bb(sub, incumbent, budget, recolour, infra);
   bb.run();
   std::vector<int> found;
   for (int k : bb.best()) found.push_back(vertices[static_cast<std::size_t>(k)]);
@@ -128,13 +128,14 @@ CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudge
   return r;
 }
 
-// bbmc / bbmcr: the whole graph in min-width order (highest core first), no pre-pruning.
-template <bool kRecolour>
+// bbmc / bbmcr / bbmcx: the whole graph in min-width order (highest core first), no pre-pruning.
+template <bool kRecolour, bool kInfra = false>
 CliqueSearchResult run_bbmc(const BitGraph& g, const CliqueSearchParams& p) {
   SearchBudget budget = make_budget(p);
   const CoreDecomposition cd = core_decomposition(g);
   const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
-  return finish(search_ordered(g, order, 0, budget, kRecolour), true, budget, max_core(cd) + 1);
+  return finish(search_ordered(g, order, 0, budget, kRecolour, kInfra), true, budget,
+                max_core(cd) + 1);
 }
 
 // bbmc-kcore: greedy lower bound, drop vertices whose core number cannot beat it, BBMC on the rest.
@@ -318,6 +319,10 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"bbmcr",
                            "BBMCR: BBMC with re-colouring (MCS Re-NUMBER) of branching candidates",
                            true, run_bbmc<true>});
+    CliqueAlgorithms::add({"bbmcx",
+                           "BBMCX: BBMCR plus the infra-chromatic bound (absorbs a vertex whose "
+                           "one neighbour in a class sees none of its neighbours in another)",
+                           true, run_bbmc<true, true>});
     CliqueAlgorithms::add(
         {"bbmc-kcore",
          "BBMC after a greedy lower bound and k-core pruning (TEASER++/PMC-style pre-pruning)",
