@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/multiversion.hpp"
+
 namespace verifybench {
 
 BitGraph::BitGraph(int n)
@@ -16,9 +18,7 @@ std::size_t BitGraph::bytes_for(std::size_t n) {
 namespace {
 // Baseline x86-64 has no popcnt instruction; pick it (and wider vectors) at load time where
 // present.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v3", "popcnt", "default")))
-#endif
+VB_MULTIVERSION_POPCNT
 int count_bits(const BitGraph::Word* bits, int words) {
   int d = 0;
   for (int w = 0; w < words; ++w) d += __builtin_popcountll(bits[w]);

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/multiversion.hpp"
+
 namespace verifybench {
 
 namespace {
@@ -17,12 +19,6 @@ using Word = BitGraph::Word;
 // eps, bit 1 = the float result is within `band` of eps and must be decided again in double.
 // Structure- of-arrays input so that the loop vectorises (16 lanes with AVX-512); compiled for
 // AVX-512, AVX2 and baseline x86-64 and picked at load time.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define VB_MULTIVERSION \
-  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define VB_MULTIVERSION
-#endif
 
 VB_MULTIVERSION
 void row_flags_3d(const float* const* c, const float* p, int count, float eps, float band,

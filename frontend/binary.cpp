@@ -1,10 +1,10 @@
 #include "frontend/binary.hpp"
 
+#include "core/multiversion.hpp"
+
 namespace verifybench {
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "popcnt", "default")))
-#endif
+VB_MULTIVERSION_POPCNT
 void scan_nearest(const BinaryDescriptors& set, const int* ids, int count,
                   const std::uint64_t* query, BinaryMatch& best) {
   const int words = set.words();

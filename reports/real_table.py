@@ -7,14 +7,15 @@ For each report (one dump): a header with the dump's match count, labelled inlie
 extraction counts when the dump has provenance, then one row per solver: accepted (of the trials),
 median inliers, median rotation / translation error against the ground truth, median time.
 """
-import json
 import statistics
 import sys
 
+import report_io
+from report_io import fmt
+
 
 def fail(msg):
-    print(f"real_table: error: {msg}", file=sys.stderr)
-    sys.exit(2)
+    report_io.fail("real_table", msg)
 
 
 def med(values):
@@ -22,19 +23,11 @@ def med(values):
     return statistics.median(values) if values else None
 
 
-def fmt(v, spec):
-    return "-" if v is None else format(v, spec)
-
-
 def main(paths):
     if not paths:
         fail("no report given")
     for path in paths:
-        try:
-            with open(path) as f:
-                doc = json.load(f)
-        except (OSError, json.JSONDecodeError) as e:
-            fail(f"{path}: {e}")
+        doc = report_io.load_report("real_table", path)
         run = doc.get("parameters", {}).get("run", {})
         rows = doc.get("results", [])
         if not rows:

@@ -7,13 +7,13 @@ For each (generator, dimension, n, pose prior) found in the reports' aggregates,
 solver, a column per outlier ratio, each cell "success rate / median time in ms" (success as the
 report defines it; "-" when the point has no ground truth). Nothing is recomputed.
 """
-import json
 import sys
+
+import report_io
 
 
 def fail(msg):
-    print(f"robustness_table: error: {msg}", file=sys.stderr)
-    sys.exit(2)
+    report_io.fail("robustness_table", msg)
 
 
 def main(paths):
@@ -21,11 +21,7 @@ def main(paths):
         fail("no report given (usage: robustness_table.py REPORT.json [...])")
     groups = {}
     for path in paths:
-        try:
-            with open(path) as f:
-                doc = json.load(f)
-        except (OSError, json.JSONDecodeError) as e:
-            fail(f"{path}: {e}")
+        doc = report_io.load_report("robustness_table", path)
         sweep = doc.get("parameters", {}).get("sweep", {})
         prior = ""
         if sweep.get("prior_sigma_trans"):

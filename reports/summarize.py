@@ -7,17 +7,14 @@ One row per aggregate (solver x setting): dim, n, outlier ratio, solver, trials,
 accept rate, median and p90 time, median inliers and median errors; then, for real dumps, one row
 per result. Columns come from the reports only; nothing is recomputed.
 """
-import json
 import sys
+
+import report_io
+from report_io import fmt
 
 
 def fail(msg):
-    print(f"summarize: error: {msg}", file=sys.stderr)
-    sys.exit(2)
-
-
-def fmt(v, spec):
-    return "-" if v is None else format(v, spec)
+    report_io.fail("summarize", msg)
 
 
 def main(paths):
@@ -25,13 +22,9 @@ def main(paths):
         fail("no report given (usage: summarize.py REPORT.json [...])")
     aggs = []
     for path in paths:
-        try:
-            with open(path) as f:
-                doc = json.load(f)
-        except (OSError, json.JSONDecodeError) as e:
-            fail(f"{path}: {e}")
-        if doc.get("schema_version") != 1 or "aggregates" not in doc:
-            fail(f"{path}: not a schema_version 1 verifybench report")
+        doc = report_io.load_report("summarize", path)
+        if "aggregates" not in doc:
+            fail(f"{path}: no aggregates")
         aggs += doc["aggregates"]
     print("| dataset | dim | n | outliers | solver | trials | success | accepted | median ms | p90 ms "
           "| median inliers | median rot err (deg) | median trans err |")

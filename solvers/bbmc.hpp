@@ -156,20 +156,26 @@ class BranchAndBound {
     return count;
   }
 
+  // The only neighbour of v (row N) in class C, or -1 when there are none or several.
+  int only_neighbour(const Word* C, const Word* N) const {
+    int hits = 0, u = -1;
+    for (int x = 0; x < W_ && hits < 2; ++x) {
+      const Word both = C[x] & N[x];
+      if (!both) continue;
+      hits += (both & (both - 1)) ? 2 : 1;
+      u = x * kBits + lowest_bit(both);
+    }
+    return hits == 1 ? u : -1;
+  }
+
   // Re-NUMBER: move v into a low class k1 where it has exactly one neighbour u, moving u into a
   // later low class k2 where u has none. Both stay proper colour classes below kmin.
   bool renumber(int v, int low_classes) {
     const Word* N = g_.row(v);
     for (int k1 = 0; k1 < low_classes - 1; ++k1) {
       Word* C1 = classes_.data() + static_cast<std::size_t>(k1) * W_;
-      int hits = 0, u = -1;
-      for (int x = 0; x < W_ && hits < 2; ++x) {
-        const Word both = C1[x] & N[x];
-        if (!both) continue;
-        hits += (both & (both - 1)) ? 2 : 1;
-        u = x * kBits + lowest_bit(both);
-      }
-      if (hits != 1) continue;
+      const int u = only_neighbour(C1, N);
+      if (u < 0) continue;
       const Word* Nu = g_.row(u);
       for (int k2 = k1 + 1; k2 < low_classes; ++k2) {
         Word* C2 = classes_.data() + static_cast<std::size_t>(k2) * W_;
@@ -196,14 +202,8 @@ class BranchAndBound {
     for (int i = 0; i < low_classes; ++i) {
       if (frozen_[static_cast<std::size_t>(i)]) continue;
       Word* Ci = classes_.data() + static_cast<std::size_t>(i) * W_;
-      int hits = 0, u = -1;
-      for (int x = 0; x < W_ && hits < 2; ++x) {
-        const Word both = Ci[x] & N[x];
-        if (!both) continue;
-        hits += (both & (both - 1)) ? 2 : 1;
-        u = x * kBits + lowest_bit(both);
-      }
-      if (hits != 1) continue;
+      const int u = only_neighbour(Ci, N);
+      if (u < 0) continue;
       const Word* Nu = g_.row(u);
       for (int j = 0; j < low_classes; ++j) {
         if (j == i || frozen_[static_cast<std::size_t>(j)]) continue;

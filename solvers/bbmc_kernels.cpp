@@ -3,6 +3,7 @@
 // subgraph is the concatenation of pext(row(member k)[w], mask[w]) over the mask's words.
 #include <cstring>
 
+#include "core/multiversion.hpp"
 #include "solvers/bbmc.hpp"
 
 namespace verifybench::detail {
@@ -75,11 +76,9 @@ bool has_bmi2() {
 
 }  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#endif
-int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord, int* col,
-                  int* classes_used, int* coloured) {
+VB_MULTIVERSION
+int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
+                  int* col, int* classes_used, int* coloured) {
   for (int w = 0; w < words; ++w) U[w] = P[w];
   int k = 0, count = 0, lo = 0, total = 0;
   for (;;) {

@@ -5,18 +5,13 @@
 
 #include <algorithm>
 
+#include "core/multiversion.hpp"
+
 namespace verifybench::detail {
 
 namespace {
 
 constexpr int kBlock = 128;
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define VB_MULTIVERSION \
-  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define VB_MULTIVERSION
-#endif
 
 /// Squared residuals of points [begin, begin + count) into r2.
 template <int Dim>
