@@ -19,8 +19,8 @@ grep -q "bad.json" "$out/err" || { echo "error does not name the file:"; cat "$o
 /usr/bin/python3 "$src/reports/robustness_table.py" "$out/r.json" > "$out/rob.md"
 grep -q '^| clique | ' "$out/rob.md" && grep -q '^| ransac | ' "$out/rob.md" &&
   grep -q 'uniform, 3D, n = 60' "$out/rob.md" || { echo "robustness table:"; cat "$out/rob.md"; exit 1; }
-/usr/bin/python3 "$src/reports/summarize.py" "$out/r.json" | grep -q '| synthetic | 2 | 60 | 0.90 | clique |' ||
-  { echo "summarize lost a row"; exit 1; }
+/usr/bin/python3 "$src/reports/summarize.py" "$out/r.json" > "$out/summary.md"
+grep -q '| synthetic | 2 | 60 | 0.90 | clique |' "$out/summary.md" || { echo "summarize lost a row"; exit 1; }
 if /usr/bin/python3 "$src/reports/real_table.py" "$out/missing.json" 2>"$out/err"; then
   echo "missing report accepted"; exit 1
 fi
