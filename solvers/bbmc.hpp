@@ -25,10 +25,11 @@ void for_each_bit(const Word* bits, int words, F&& f) {
 
 /// BBMC's bit-parallel greedy colouring of P (rows of `words` words from `rows`): stores the
 /// vertices of colour >= kmin in ord/col (room for |P|), returns how many; sets the classes used
-/// and |P|. U and Q are scratch bitsets of `words` words. Compiled for AVX-512, AVX2 and baseline
-/// x86-64.
+/// and |P|. U and Q are scratch bitsets of `words` words. When `low` is not null (kmin - 1 zeroed
+/// bitsets of `words` words), class k < kmin is also written to low[k - 1]. Compiled for AVX-512,
+/// AVX2 and baseline x86-64.
 int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
-                  int* col, int* classes_used, int* coloured);
+                  int* col, int* classes_used, int* coloured, Word* low = nullptr);
 
 /// Limits shared by every search of one solve: a deadline and a node budget, checked every 64
 /// nodes.
@@ -100,22 +101,41 @@ class BranchAndBound {
   int colour(const Word* P, int depth, int kmin) {
     auto& ord = order_[static_cast<std::size_t>(depth)];
     auto& col = colour_[static_cast<std::size_t>(depth)];
-    if (!recolour_) {
+    if (!recolour_ || infra_) {
       const int size = BitGraph::count(P, W_);
       if (ord.size() < static_cast<std::size_t>(size)) {
         ord.resize(static_cast<std::size_t>(size));
         col.resize(static_cast<std::size_t>(size));
       }
-      return colour_kernel(P, W_, g_.row(0), kmin, U_.data(), Q_.data(), ord.data(), col.data(),
-                           &colours_, &coloured_);
+      const int low_classes = infra_ ? kmin - 1 : 0;
+      if (low_classes > 0) {
+        classes_.assign(static_cast<std::size_t>(low_classes) * W_, 0);
+        frozen_.assign(static_cast<std::size_t>(low_classes), 0);
+      }
+      const int count =
+          colour_kernel(P, W_, g_.row(0), kmin, U_.data(), Q_.data(), ord.data(), col.data(),
+                        &colours_, &coloured_, low_classes > 0 ? classes_.data() : nullptr);
+      if (low_classes < 2) return count;
+      // BBMCX after the fast greedy pass: each vertex past the bound, in colouring order, is
+      // re-numbered into or absorbed by the low classes when it can be, and then not branched on.
+      // Taking a vertex out of a high class only lowers what later ones could need, so their
+      // colours stay valid bounds.
+      int kept = 0;
+      for (int s = 0; s < count; ++s) {
+        const int v = ord[static_cast<std::size_t>(s)];
+        if (renumber_or_absorb(v, low_classes)) continue;
+        ord[static_cast<std::size_t>(kept)] = v;
+        col[static_cast<std::size_t>(kept)] = col[static_cast<std::size_t>(s)];
+        ++kept;
+      }
+      return kept;
     }
     Word* U = U_.data();
     Word* Q = Q_.data();
     std::copy(P, P + W_, U);
     int k = 0, count = 0, lo = 0, total = 0;
-    const int low_classes = recolour_ ? kmin - 1 : 0;  // classes a vertex may be re-numbered into
+    const int low_classes = kmin - 1;  // classes a vertex may be re-numbered into
     if (low_classes > 0) classes_.assign(static_cast<std::size_t>(low_classes) * W_, 0);
-    if (infra_) frozen_.assign(static_cast<std::size_t>(std::max(low_classes, 0)), 0);
     for (;;) {
       while (lo < W_ && U[lo] == 0) ++lo;
       if (lo == W_) break;
@@ -129,10 +149,7 @@ class BranchAndBound {
           Q[w] &= ~(Word{1} << b);
           const Word* N = g_.row(v);
           ++total;
-          if (k >= kmin && low_classes > 1 &&
-              (infra_ ? renumber_or_absorb(v, low_classes) : renumber(v, low_classes))) {
-            continue;
-          }
+          if (k >= kmin && low_classes > 1 && renumber(v, low_classes)) continue;
           for (int x = w; x < W_; ++x) Q[x] &= ~N[x];
           if (k <= low_classes) {
             classes_[static_cast<std::size_t>(k - 1) * W_ + static_cast<std::size_t>(w)] |= Word{1}

@@ -78,7 +78,7 @@ bool has_bmi2() {
 
 VB_MULTIVERSION
 int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
-                  int* col, int* classes_used, int* coloured) {
+                  int* col, int* classes_used, int* coloured, Word* low) {
   for (int w = 0; w < words; ++w) U[w] = P[w];
   int k = 0, count = 0, lo = 0, total = 0;
   for (;;) {
@@ -99,6 +99,9 @@ int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U,
           ord[count] = v;
           col[count] = k;
           ++count;
+        } else if (low) {
+          low[static_cast<std::size_t>(k - 1) * static_cast<std::size_t>(words) +
+              static_cast<std::size_t>(w)] |= Word{1} << b;
         }
       }
     }
