@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <tuple>
 #include <variant>
 
 #include "apps/harness.hpp"
@@ -243,6 +244,24 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   return 0;
 }
 
+/// --prior-rot-deg / --prior-trans: both > 0 or both 0 (no prior); sigmas in radians and metres.
+std::pair<double, double> prior_sigmas(const vb::Options& o) {
+  const double rot = o.real("prior-rot-deg", 0.0, 180.0) * M_PI / 180.0;
+  const double trans = o.real("prior-trans", 0.0, 1e9);
+  if ((rot > 0.0) != (trans > 0.0)) {
+    throw vb::UsageError("--prior-rot-deg and --prior-trans go together (both > 0)");
+  }
+  return {rot, trans};
+}
+
+void add_prior_options(vb::Options& o, const char* what) {
+  o.add("prior-rot-deg", "DEG", "0",
+        std::string("give ") + what +
+            " a pose prior drawn around the truth: rotation sigma per "
+            "axis [deg] (with --prior-trans; jcbb uses it)")
+      .add("prior-trans", "M", "0", "pose prior translation sigma per axis [m]");
+}
+
 /// Refuses an unknown generator or one that lacks a requested dimension, before any work.
 void check_generator(const std::string& kind, const std::vector<int>& dims) {
   std::string known;
@@ -279,10 +298,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
       .add("near-radius", "M", "1", "near-true, bev-orb: outliers this far from the truth [m]")
       .add("cell", "M", "0.5", "bev-orb: bird's-eye-view cell size [m]")
       .add("score-separation", "D", "1",
-           "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none")
-      .add("prior-rot-deg", "DEG", "0",
-           "give each set a pose prior: rotation sigma per axis [deg] (with --prior-trans)")
-      .add("prior-trans", "M", "0", "pose prior translation sigma per axis [m]");
+           "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none");
+  add_prior_options(o, "each set");
   o.parse(args);
   if (o.help_requested()) {
     std::cout << "usage: verifybench sweep [options] --out FILE.json\n" << o.help();
@@ -310,11 +327,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.shape.cell = o.real("cell", 1e-9, 1e9);
   c.shape.score_separation = o.real("score-separation", -1e9, 1e9);
   check_generator(c.shape.kind, c.dims);
-  c.prior_sigma_rot = o.real("prior-rot-deg", 0.0, 180.0) * M_PI / 180.0;
-  c.prior_sigma_trans = o.real("prior-trans", 0.0, 1e9);
-  if ((c.prior_sigma_rot > 0.0) != (c.prior_sigma_trans > 0.0)) {
-    throw vb::UsageError("--prior-rot-deg and --prior-trans go together (both > 0)");
-  }
+  std::tie(c.prior_sigma_rot, c.prior_sigma_trans) = prior_sigmas(o);
   c.params = solver_params(o);
   c.seed = c.params.seed;
   c.criteria = criteria(o);
@@ -352,6 +365,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
         "dump folder: dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt] (required)");
   add_solver_options(o);
   o.add("trials", "K", "1", "repeat each solver K times (timing statistics)");
+  add_prior_options(o, "the set (it needs a ground truth)");
   o.parse(args);
   if (o.help_requested()) {
     std::cout << "usage: verifybench run --dump DIR [options] --out FILE.json\n" << o.help();
@@ -363,19 +377,28 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const vb::SuccessCriteria crit = criteria(o);
   const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
   const std::string out = o.required("out");
-  const vb::Dump dump = vb::read_dump(dir);
-  const vb::AnySet& set = dump.set;
+  const auto [prior_rot, prior_trans] = prior_sigmas(o);
+  vb::Dump dump = vb::read_dump(dir);
   std::vector<vb::TrialRecord> rows = std::visit(
-      [&](const auto& s) {
+      [&](auto& s) {
         vb::validate(s);
+        if (prior_rot > 0.0) {
+          if (!s.truth.T_target_source) {
+            throw vb::UsageError("--prior-rot-deg: " + dir +
+                                 " has no ground truth to draw a prior around");
+          }
+          vb::add_pose_prior(s, prior_rot, prior_trans, params.seed);
+        }
         return vb::run_on_set(names, s, dir, trials, params.seed, params, crit);
       },
-      set);
+      dump.set);
   if (!o.flag("quiet")) print_point(rows);
   json parameters = params_json(params, crit);
   parameters["run"] = {
       {"dump", dir},
       {"trials", trials},
+      {"prior_sigma_rot_deg", prior_rot * 180.0 / M_PI},
+      {"prior_sigma_trans", prior_trans},
       {"solvers", names},
       {"label_threshold", dump.label_threshold ? json(*dump.label_threshold) : json(nullptr)},
       {"dump_provenance", dump.provenance}};

@@ -47,6 +47,9 @@ def main(paths):
         pipe = prov.get("pipeline", {}).get("name")
         if pipe:
             line += f"; {pipe}"
+        if run.get("prior_sigma_trans"):
+            line += (f"; **pose prior** {run.get('prior_sigma_rot_deg', 0):g} deg / "
+                     f"{run['prior_sigma_trans']:g} m per axis")
         print(line + "\n")
         print("| solver | accepted | inliers | precision | rot. err [deg] | trans. err [m] | time [ms] |")
         print("|---|---|---|---|---|---|---|")

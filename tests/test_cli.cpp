@@ -67,6 +67,9 @@ TEST(Cli, MalformedDumpNamesFileAndLine) {
   fs::create_directories(dir);
   std::ofstream(dir / "corr.txt") << "0 0 0 1 1 1\n0 0 0 1 1 oops\n";
   expect_usage_error("run --dump " + dir.string() + " " + kOut, "corr.txt:2: field column 6");
+  std::ofstream(dir / "corr.txt") << "0 0 0 1 1 1\n0 1 0 1 2 1\n";  // valid, but no GTmat.txt
+  expect_usage_error("run --prior-rot-deg 1 --prior-trans 0.1 --dump " + dir.string() + " " + kOut,
+                     "has no ground truth to draw a prior around");
   fs::remove_all(dir);
 }
 
