@@ -59,7 +59,9 @@ def curves(points):
 def title(doc, dim):
     sweep = doc.get("parameters", {}).get("sweep", {})
     eps = doc.get("parameters", {}).get("eps")
-    return f"{dim}D, noise {sweep.get('noise')}, eps {eps}, {sweep.get('trials')} trials/point"
+    generator = sweep.get("generator", "uniform")
+    return (f"{generator}, {dim}D, noise {sweep.get('noise')}, eps {eps}, "
+            f"{sweep.get('trials')} trials/point")
 
 
 
@@ -70,6 +72,8 @@ def plot(doc, points, out_dir, stem):
     solvers = sorted({a["solver"] for a in points})
     sizes = sorted({a["n"] for a in points})
     cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    if len(solvers) > len(cycle):  # 20 distinct colours before any repeats
+        cycle = [matplotlib.colormaps["tab20"](i) for i in range(20)]
     colour = {s: cycle[i % len(cycle)] for i, s in enumerate(solvers)}
     marker = {n: "osD^vP*X"[i % 8] for i, n in enumerate(sizes)}
     paths = []
