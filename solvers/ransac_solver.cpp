@@ -131,7 +131,7 @@ class Engine {
     long long t = 0;
     int pool = Dim;  // PROSAC: sampling from the `pool` best
     while (n_ >= Dim && t < needed) {
-      if (SteadyClock::now() >= deadline) {
+      if ((batch > 1 || (t & 63) == 0) && SteadyClock::now() >= deadline) {  // every 64 draws
         finished = false;
         break;
       }

@@ -226,3 +226,27 @@ TEST_F(Family, ScoresOfTheWrongLengthAreAnError) {
 
 }  // namespace
 }  // namespace verifybench
+
+namespace verifybench {
+namespace {
+
+TEST(Family2, TimeLimitStopsTheHypothesisLoop) {
+  register_builtin_solvers();
+  SyntheticParams p;
+  p.n = 2000;
+  p.outlier_ratio = 0.99;
+  const auto set = make_synthetic<3>(p);
+  SolverParams sp;
+  sp.ransac_iterations = 100000000;  // ~1 min of work without the limit
+  sp.time_limit_s = 0.02;
+  for (int threads : {1, 2}) {
+    sp.threads = threads;
+    const auto r = SolverRegistry::create("ransac")->solve(set.corr, sp);
+    EXPECT_EQ(r.status, Status::time_limit) << threads;
+    EXPECT_LT(r.counters.iterations, 10000000) << threads;
+    EXPECT_GT(r.counters.iterations, 0) << threads;
+  }
+}
+
+}  // namespace
+}  // namespace verifybench
