@@ -263,6 +263,24 @@ TEST(DumpFormat, RoundTripsEveryField) {
     EXPECT_NE(m.find("line 9"), std::string::npos) << m;
     EXPECT_NE(m.find("zt = 'six'"), std::string::npos) << m;
   }
+  // A header from the future, a count that disagrees, and no JSON at all are named too.
+  auto expect_error = [&](const std::string& json_text, const std::string& needle) {
+    std::ofstream(dir / "dump.json") << json_text;
+    try {
+      read_dump(dir.string());
+      FAIL() << json_text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("dump.json"), std::string::npos) << e.what();
+    }
+  };
+  expect_error(R"({"format": "verifybench-dump", "version": 2, "dim": 3})", "version = 2");
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 4})", "dim = 4");
+  expect_error(R"({"format": "something-else", "version": 1})", "format");
+  expect_error("{not json", "not valid JSON");
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 2,
+                   "columns": ["xs", "ys", "zs", "xt", "yt", "zt"]})",
+               "columns do not match dim 2");
   fs::remove_all(dir);
 }
 
