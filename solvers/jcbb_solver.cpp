@@ -155,8 +155,9 @@ class Search {
     if (corr_.prior) {
       const auto& pr = *corr_.prior;
       const double gate = gates_(Dim);
+      pred_ = pr.T_target_source * m_;  // T0 m_i, kept for every node's joint test
       for (int i = 0; i < n; ++i) {
-        const Vec p = pr.T_target_source * m_.col(i);
+        const Vec p = pred_.col(i);
         const auto J = PriorModel<Dim>::jacobian(p);
         const Eigen::Matrix<double, Dim, Dim> S =
             J * pr.covariance * J.transpose() + var2_ * Eigen::Matrix<double, Dim, Dim>::Identity();
@@ -201,8 +202,7 @@ class Search {
     return dof == 0 || d2 < gates_(dof);
   }
   bool test(PriorModel<Dim>& model, int i, double& d2) {
-    const auto& pr = *corr_.prior;
-    const Vec p = pr.T_target_source * m_.col(i);
+    const Vec p = pred_.col(i);
     model.add(PriorModel<Dim>::jacobian(p), q_.col(i) - p, 1.0 / var2_);
     d2 = model.d2();
     return d2 < gates_(Dim * model.k);
@@ -238,6 +238,7 @@ class Search {
   Gates gates_;
   const SteadyClock::time_point deadline_;
   typename Correspondences<Dim>::Points m_, q_;
+  typename Correspondences<Dim>::Points pred_;  ///< prior mode: T0 m_i
 };
 
 class JcbbSolver : public SolverBase<JcbbSolver> {
