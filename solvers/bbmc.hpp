@@ -222,7 +222,8 @@ class BranchAndBound {
       const int u = only_neighbour(Ci, N);
       if (u < 0) continue;
       const Word* Nu = g_.row(u);
-      for (int j = 0; j < low_classes; ++j) {
+      // Once an absorption is found only a re-number (j > i) can still be preferred to it.
+      for (int j = absorb_i < 0 ? 0 : i + 1; j < low_classes; ++j) {
         if (j == i || frozen_[static_cast<std::size_t>(j)]) continue;
         Word* Cj = classes_.data() + static_cast<std::size_t>(j) * W_;
         Word seen = 0, triangle = 0;
