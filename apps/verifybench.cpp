@@ -164,6 +164,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
            "clique algorithms (see `verifybench list`)")
       .add("time-limit", "S", "60", "per-search time limit [s]")
       .add("threads", "T", "1", "threads of the parallel algorithms (bbmc-dec; 0 = all cores)")
+      .add("seed", "S", "1", "seed of the randomised algorithms (bbmcx-ls; recorded in the report)")
       .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
       .add("out", "FILE.json", "", "report path (required; written atomically)")
       .add("quiet", "", "", "no progress lines");
@@ -180,6 +181,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   vb::CliqueSearchParams params;
   params.time_limit_s = o.real("time-limit", 1e-6, 1e9);
   params.threads = static_cast<int>(o.integer("threads", 0, 1024));
+  params.seed = o.seed("seed");
   const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30))
                                 << 20;
   const std::string out = o.required("out");
@@ -211,6 +213,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
         r.omega = static_cast<int>(res.clique.size());
         r.nodes = res.nodes;
         r.upper_bound = res.upper_bound;
+        r.local_search_steps = res.local_search_steps;
         for (int v : res.clique) r.clique.push_back(v + 1);
         if (!g.is_clique(res.clique)) {
           r.status = "error";
@@ -232,7 +235,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
                      {"algorithms", names},
                      {"time_limit_s", params.time_limit_s},
                      {"threads", params.threads}};
-  vb::write_json_atomic(out, vb::make_report(vb::make_context(argv, 0), parameters, rows));
+  vb::write_json_atomic(out, vb::make_report(vb::make_context(argv, params.seed), parameters, rows));
   std::cout << out << "\n";
   for (const auto& r : rows) {
     if (r.status == "error") {

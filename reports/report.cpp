@@ -207,6 +207,7 @@ json to_json(const CliqueRecord& r) {
             {"nodes", r.nodes},
             {"upper_bound", r.upper_bound},
             {"clique", r.clique}};
+  if (r.local_search_steps > 0) j["local_search_steps"] = r.local_search_steps;
   if (!r.message.empty()) j["message"] = r.message;
   return j;
 }

@@ -3,9 +3,11 @@
 // with a bit-parallel greedy colouring bound. Internal to solvers/; the graph's vertex order is the
 // initial order (index 0 is coloured first, so put high-degree / high-core vertices there).
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 #include "core/bitgraph.hpp"
+#include "solvers/clique_local_search.hpp"
 #include "solvers/timer.hpp"
 
 namespace verifybench::detail {
@@ -82,6 +84,18 @@ class BranchAndBound {
     expand(0);
   }
   const std::vector<int>& best() const { return best_; }
+
+  /// Interleaves a local search on the same graph. At the first node and every 1024 nodes it runs
+  /// until its work (LocalSearch::work, vertices and words visited) reaches `initial_work` plus
+  /// `share` times the words this search has touched colouring, and a larger clique it has found
+  /// becomes the incumbent at once (a lower bound is valid anywhere in the tree). Costs a bounded
+  /// share of the time; pays where the search meets omega late (brock*: their maximum cliques
+  /// hide among low-degree vertices, which greedy colouring orders visit last).
+  void interleave(LocalSearch* search, long long initial_work, double share) {
+    helper_ = search;
+    helper_initial_ = initial_work;
+    helper_share_ = share;
+  }
 
   /// The subgraph induced by `vertices` (ascending ids), vertex k of the result being vertices[k].
   /// `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
@@ -247,12 +261,27 @@ class BranchAndBound {
     return false;
   }
 
+  void consult_helper() {
+    const long long goal =
+        helper_initial_ + static_cast<long long>(helper_share_ * static_cast<double>(work_));
+    if (goal <= helper_->work() ||
+        !helper_->run_until(std::numeric_limits<long long>::max(), goal, budget_.deadline)) {
+      return;
+    }
+    if (static_cast<int>(helper_->best().size()) > best_size_) {
+      best_ = helper_->best();
+      best_size_ = static_cast<int>(best_.size());
+    }
+  }
+
   void expand(int depth) {
     if (!budget_.spend()) return;
+    if (helper_ && (budget_.nodes & 1023) == 1) consult_helper();
     Word* P = level(depth).data();
     Word* next = level(depth + 1).data();
     const int size = static_cast<int>(clique_.size());
     const int count = colour(P, depth, std::max(1, best_size_ - size + 1));
+    work_ += static_cast<long long>(coloured_) * W_;
     if (colours_ == coloured_) {
       // Every class is a singleton, so each vertex is adjacent to all before it: P is a clique, and
       // C + P is the best of this subtree. Ends the long descent into a large planted clique.
@@ -292,6 +321,9 @@ class BranchAndBound {
   SearchBudget& budget_;
   bool recolour_;
   bool infra_;
+  LocalSearch* helper_ = nullptr;
+  long long helper_initial_ = 0;
+  double helper_share_ = 0;
   std::vector<char> frozen_;  // infra: low classes already used by an absorption
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;  // candidate set per depth
@@ -299,6 +331,7 @@ class BranchAndBound {
   std::vector<Word> U_, Q_;
   std::vector<Word> classes_;  // the low colour classes, for re-numbering
   int colours_ = 0, coloured_ = 0;
+  long long work_ = 0;  // words touched colouring, over all nodes (for interleaving)
 };
 
 /// The subgraph induced by `vertices` in any order, vertex k of the result being vertices[k].

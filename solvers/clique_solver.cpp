@@ -24,6 +24,7 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
     CliqueSearchParams search;
     search.time_limit_s = params.time_limit_s - result.times.graph_ms / 1000.0;
     search.threads = params.threads;
+    search.seed = params.seed;
     const CliqueSearchResult clique = algorithm_(graph, search);
     result.times.search_ms = search_clock.ms();
     result.counters.branch_nodes = clique.nodes;

@@ -5,11 +5,14 @@
 //               min-width initial order; exact
 //   bbmcr       bbmc with re-colouring of branching candidates (Re-NUMBER; BBMCR)
 //   bbmc-kcore  bbmc after a greedy lower bound and k-core pruning (as PMC does inside TEASER++)
+//   bbmcx       bbmcr plus the infra-chromatic bound of BBMCX
+//   bbmcx-ls    bbmcx with a DLS-MC local search interleaved, for an early lower bound
 //   bbmc-dec    PMC-style decomposition: for each vertex in degeneracy order, BBMC on its later
 //               neighbours (a compact subgraph of at most degeneracy vertices); exact; parallel
 //               with the same clique for any thread count
 //   greedy      the greedy clique alone: no optimality proof (to show what exactness buys)
 //   cliquer, igraph  peers from Debian's libcliquer and libigraph (clique_peers.cpp)
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
@@ -24,6 +27,7 @@ struct CliqueSearchParams {
   long long node_limit = 0;  ///< branch nodes before giving up; 0 = no limit (per thread)
   int threads =
       1;  ///< bbmc-dec: worker threads (0 = all cores); the clique is the same for any count
+  std::uint64_t seed = 1;  ///< bbmcx-ls: the local search's random stream
 };
 
 struct CliqueSearchResult {
@@ -32,6 +36,7 @@ struct CliqueSearchResult {
   bool stopped = false;     ///< the time or node limit cut the search short
   long long nodes = 0;      ///< branch-and-bound nodes expanded
   int upper_bound = 0;      ///< an upper bound on the clique number (degeneracy + 1 at least)
+  long long local_search_steps = 0;  ///< bbmcx-ls: steps of the interleaved local search
 };
 
 using CliqueAlgorithm =
@@ -70,6 +75,20 @@ struct MaximalCliqueParams {
 bool for_each_maximal_clique(const BitGraph& g, const MaximalCliqueParams& params,
                              const std::function<void(const std::vector<int>&)>& report,
                              long long* nodes = nullptr);
+
+/// Dynamic local search for a large clique (DLS-MC, Pullan & Hoos 2006): expansion and plateau
+/// swaps guided by vertex penalties, restarts from the last vertex added. No optimality proof; a
+/// lower bound for the exact searches. Deterministic for a given seed.
+struct LocalSearchParams {
+  long long max_steps = 100000;  ///< additions, swaps and restarts in all
+  int target = std::numeric_limits<int>::max();  ///< stop once a clique this large is found
+  int penalty_delay = 2;         ///< cycles between penalty decreases (1 = no penalties)
+  std::uint64_t seed = 1;
+  double time_limit_s = std::numeric_limits<double>::infinity();
+};
+/// The largest clique met (ascending ids); `steps_used`, when given, receives the steps taken.
+std::vector<int> local_search_clique(const BitGraph& g, const LocalSearchParams& params,
+                                     long long* steps_used = nullptr);
 
 /// Core numbers (Batagelj & Zaversnik 2003) and the smallest-last removal order.
 struct CoreDecomposition {

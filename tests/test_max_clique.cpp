@@ -162,6 +162,92 @@ TEST(MaxClique, NodeLimitReturnsBestSoFarWithStatus) {
   EXPECT_GE(r.clique.size(), 2u);  // the greedy incumbent is kept
 }
 
+TEST(LocalSearch, FindsTheCliqueNumberOfSmallGraphs) {
+  std::mt19937_64 rng(31);
+  for (int rep = 0; rep < 150; ++rep) {
+    const int n = 8 + rep % 15;
+    const BitGraph g = test::random_graph(n, 0.3 + 0.1 * (rep % 7), rng);
+    LocalSearchParams p;
+    p.max_steps = 5000;
+    p.seed = static_cast<std::uint64_t>(rep);
+    const std::vector<int> c = local_search_clique(g, p);
+    ASSERT_TRUE(g.is_clique(c)) << "rep " << rep;
+    ASSERT_TRUE(std::is_sorted(c.begin(), c.end()));
+    ASSERT_EQ(static_cast<int>(c.size()), test::brute_force_clique_number(g)) << "rep " << rep;
+  }
+}
+
+TEST(LocalSearch, FindsACliqueHiddenAmongLowDegreeVertices) {
+  // brock-style: 30 vertices of a 240-vertex graph form a clique but see the rest with
+  // probability 0.5, while the rest see each other with 0.75 (clique number ~ 21 there), so a
+  // greedy by degree or core number starts elsewhere.
+  std::mt19937_64 rng(43);
+  const int n = 240, k = 30;
+  BitGraph g(n);
+  std::bernoulli_distribution dense(0.75), sparse(0.5);
+  for (int u = 0; u < n; ++u) {
+    for (int v = u + 1; v < n; ++v) {
+      if (v < k || (u >= k ? dense(rng) : sparse(rng))) g.add_edge(u, v);
+    }
+  }
+  std::vector<int> hidden(k);
+  std::iota(hidden.begin(), hidden.end(), 0);
+  register_clique_algorithms();
+  EXPECT_LT(solve("greedy", g).clique.size(), hidden.size());
+  LocalSearchParams p;
+  p.max_steps = 200000;
+  p.target = k;
+  long long steps = 0;
+  EXPECT_EQ(local_search_clique(g, p, &steps), hidden);
+  EXPECT_LT(steps, p.max_steps);
+  // Exact with the local search interleaved: the hidden clique, proved maximum.
+  const auto r = solve("bbmcx-ls", g);
+  EXPECT_TRUE(r.optimal);
+  EXPECT_EQ(r.clique, hidden);
+  EXPECT_GT(r.local_search_steps, 0);
+}
+
+TEST(LocalSearch, SameSeedSameClimbAndTargetStopsIt) {
+  std::mt19937_64 rng(37);
+  const BitGraph g = test::random_graph(200, 0.8, rng);
+  LocalSearchParams p;
+  p.max_steps = 20000;
+  p.seed = 9;
+  long long steps_a = 0, steps_b = 0;
+  const auto a = local_search_clique(g, p, &steps_a);
+  const auto b = local_search_clique(g, p, &steps_b);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(steps_a, steps_b);
+  EXPECT_GE(steps_a, p.max_steps);  // no target: it uses its whole budget
+  p.target = 5;
+  const auto c = local_search_clique(g, p, &steps_b);
+  EXPECT_GE(c.size(), 5u);
+  EXPECT_TRUE(g.is_clique(c));
+  EXPECT_LT(steps_b, 100);  // a first descent in a dense graph passes 5 at once
+  EXPECT_TRUE(local_search_clique(BitGraph(0), p).empty());
+}
+
+TEST(MaxClique, InterleavedLocalSearchKeepsTheSearchExactMidTree) {
+  // Graphs that take thousands of nodes, so the local search is consulted inside the tree and
+  // can raise the incumbent there: the clique number must still be bbmc's, for any seed.
+  register_clique_algorithms();
+  std::mt19937_64 rng(47);
+  for (int rep = 0; rep < 4; ++rep) {
+    const BitGraph g = test::random_graph(150, 0.75 + 0.03 * rep, rng);
+    const auto reference = solve("bbmc", g);
+    ASSERT_TRUE(reference.optimal);
+    for (std::uint64_t seed : {1u, 2u, 3u}) {
+      CliqueSearchParams p;
+      p.seed = seed;
+      const auto r = solve("bbmcx-ls", g, p);
+      ASSERT_TRUE(r.optimal);
+      ASSERT_TRUE(g.is_clique(r.clique));
+      EXPECT_EQ(r.clique.size(), reference.clique.size()) << "rep " << rep << " seed " << seed;
+      EXPECT_GT(r.nodes, 2048) << "rep " << rep;  // the test exercises the consultations
+    }
+  }
+}
+
 TEST(MaxClique, GreedyIsAValidCliqueNoLargerThanOptimal) {
   register_clique_algorithms();
   std::mt19937_64 rng(23);
