@@ -79,21 +79,25 @@ bool has_bmi2() {
 VB_MULTIVERSION
 int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
                   int* col, int* classes_used, int* coloured, Word* low) {
-  for (int w = 0; w < words; ++w) U[w] = P[w];
+  // Candidates end at word `end`: no later word of U or Q is ever set, so no loop goes past it
+  // (deep in a correspondence graph the candidates fill a few of its 100+ words a row).
+  int end = words;
+  while (end > 0 && P[end - 1] == 0) --end;
+  for (int w = 0; w < end; ++w) U[w] = P[w];
   int k = 0, count = 0, lo = 0, total = 0;
   for (;;) {
-    while (lo < words && U[lo] == 0) ++lo;
-    if (lo == words) break;
+    while (lo < end && U[lo] == 0) ++lo;
+    if (lo == end) break;
     ++k;
-    for (int w = lo; w < words; ++w) Q[w] = U[w];
-    for (int w = lo; w < words; ++w) {
+    for (int w = lo; w < end; ++w) Q[w] = U[w];
+    for (int w = lo; w < end; ++w) {
       while (Q[w]) {
         const int b = __builtin_ctzll(Q[w]);
         const int v = w * kBits + b;
         U[w] &= ~(Word{1} << b);
         Q[w] &= ~(Word{1} << b);
         const Word* N = rows + static_cast<std::size_t>(v) * static_cast<std::size_t>(words);
-        for (int x = w; x < words; ++x) Q[x] &= ~N[x];
+        for (int x = w; x < end; ++x) Q[x] &= ~N[x];
         ++total;
         if (k >= kmin) {
           ord[count] = v;

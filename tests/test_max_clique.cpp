@@ -74,6 +74,26 @@ TEST_P(Exact, FindsPlantedCliqueAcrossWordBoundaries) {
   EXPECT_EQ(r.clique, planted);
 }
 
+TEST_P(Exact, FindsPlantedCliqueInLongSparseRows) {
+  // 2100 vertices (33 words a row) at density 0.1: subtrees below the root are searched on packed
+  // subgraphs (bbmc.hpp, search_packed). G(2100, 0.1) has clique number ~6, so the planted 14 is
+  // the unique maximum.
+  std::mt19937_64 rng(53);
+  BitGraph g = test::random_graph(2100, 0.1, rng);
+  std::vector<int> planted(2100);
+  std::iota(planted.begin(), planted.end(), 0);
+  std::shuffle(planted.begin(), planted.end(), rng);
+  planted.resize(14);
+  for (std::size_t a = 0; a < planted.size(); ++a)
+    for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
+  std::sort(planted.begin(), planted.end());
+  CliqueSearchParams p;
+  p.time_limit_s = 120;  // a safety net against a hang, not a timing assertion
+  const auto r = solve(GetParam(), g, p);
+  EXPECT_TRUE(r.optimal);
+  EXPECT_EQ(r.clique, planted);
+}
+
 TEST_P(Exact, PermutingVerticesKeepsTheCliqueNumber) {
   std::mt19937_64 rng(11);
   for (int rep = 0; rep < 10; ++rep) {
@@ -246,6 +266,14 @@ TEST(MaxClique, InterleavedLocalSearchKeepsTheSearchExactMidTree) {
       EXPECT_GT(r.nodes, 2048) << "rep " << rep;  // the test exercises the consultations
     }
   }
+  // Rows of 32 words: the subtrees run on packed subgraphs, which consult the local search too.
+  const BitGraph g = test::random_graph(2000, 0.15, rng);
+  const auto reference = solve("bbmc", g);
+  const auto r = solve("bbmcx-ls", g);
+  ASSERT_TRUE(reference.optimal && r.optimal);
+  EXPECT_TRUE(g.is_clique(r.clique));
+  EXPECT_EQ(r.clique.size(), reference.clique.size());
+  EXPECT_GT(r.nodes, 20000);
 }
 
 TEST(MaxClique, GreedyIsAValidCliqueNoLargerThanOptimal) {
