@@ -56,6 +56,9 @@ static void Args(benchmark::internal::Benchmark* b) {
   BENCHMARK_CAPTURE(BM_Dump6614, name, std::string(algorithm))->Unit(benchmark::kMillisecond)
 
 VB_CLIQUE_BENCH(bbmc, "bbmc");
+VB_CLIQUE_BENCH(bbmcr, "bbmcr");
+VB_CLIQUE_BENCH(bbmcx, "bbmcx");
+VB_CLIQUE_BENCH(bbmcx_ls, "bbmcx-ls");
 VB_CLIQUE_BENCH(bbmc_kcore, "bbmc-kcore");
 VB_CLIQUE_BENCH(bbmc_dec, "bbmc-dec");
 VB_CLIQUE_BENCH(greedy, "greedy");

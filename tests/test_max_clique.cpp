@@ -61,13 +61,7 @@ TEST_P(Exact, EdgeCaseGraphs) {
 TEST_P(Exact, FindsPlantedCliqueAcrossWordBoundaries) {
   std::mt19937_64 rng(7);
   BitGraph g = test::random_graph(300, 0.1, rng);
-  std::vector<int> planted(300);
-  std::iota(planted.begin(), planted.end(), 0);
-  std::shuffle(planted.begin(), planted.end(), rng);
-  planted.resize(25);
-  for (std::size_t a = 0; a < planted.size(); ++a)
-    for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
-  std::sort(planted.begin(), planted.end());
+  const std::vector<int> planted = test::plant_clique(g, 25, rng);
   const auto r = solve(GetParam(), g);
   EXPECT_TRUE(r.optimal);
   // G(300, 0.1) alone has clique number far below 25, so the planted clique is the unique maximum.
@@ -80,13 +74,7 @@ TEST_P(Exact, FindsPlantedCliqueInLongSparseRows) {
   // the unique maximum.
   std::mt19937_64 rng(53);
   BitGraph g = test::random_graph(2100, 0.1, rng);
-  std::vector<int> planted(2100);
-  std::iota(planted.begin(), planted.end(), 0);
-  std::shuffle(planted.begin(), planted.end(), rng);
-  planted.resize(14);
-  for (std::size_t a = 0; a < planted.size(); ++a)
-    for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
-  std::sort(planted.begin(), planted.end());
+  const std::vector<int> planted = test::plant_clique(g, 14, rng);
   CliqueSearchParams p;
   p.time_limit_s = 120;  // a safety net against a hang, not a timing assertion
   const auto r = solve(GetParam(), g, p);
@@ -133,13 +121,7 @@ TEST(MaxClique, LargePlantedCliqueIsProvedOptimal) {
   register_clique_algorithms();
   std::mt19937_64 rng(29);
   BitGraph g = test::random_graph(1200, 0.05, rng);
-  std::vector<int> planted(1200);
-  std::iota(planted.begin(), planted.end(), 0);
-  std::shuffle(planted.begin(), planted.end(), rng);
-  planted.resize(600);
-  for (std::size_t a = 0; a < planted.size(); ++a)
-    for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
-  std::sort(planted.begin(), planted.end());
+  const std::vector<int> planted = test::plant_clique(g, 600, rng);
   for (const char* algorithm : {"bbmc", "bbmc-kcore", "bbmc-dec"}) {
     CliqueSearchParams p;
     p.time_limit_s = 120;  // a safety net against a hang, not a timing assertion

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests: seeded random graphs and transforms, and a brute-force clique
 // oracle.
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -18,6 +19,18 @@ inline BitGraph random_graph(int n, double density, std::mt19937_64& rng) {
     }
   }
   return g;
+}
+
+/// Joins k random vertices of g into a clique; returns them in ascending order.
+inline std::vector<int> plant_clique(BitGraph& g, int k, std::mt19937_64& rng) {
+  std::vector<int> planted(static_cast<std::size_t>(g.size()));
+  for (int v = 0; v < g.size(); ++v) planted[static_cast<std::size_t>(v)] = v;
+  std::shuffle(planted.begin(), planted.end(), rng);
+  planted.resize(static_cast<std::size_t>(k));
+  for (std::size_t a = 0; a < planted.size(); ++a)
+    for (std::size_t b = a + 1; b < planted.size(); ++b) g.add_edge(planted[a], planted[b]);
+  std::sort(planted.begin(), planted.end());
+  return planted;
 }
 
 /// Clique number by exhaustive include/exclude recursion (n <= ~30): obviously correct, slow.
