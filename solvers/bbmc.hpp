@@ -121,7 +121,11 @@ class BranchAndBound {
         ord.resize(static_cast<std::size_t>(size));
         col.resize(static_cast<std::size_t>(size));
       }
-      const int low_classes = infra_ ? kmin - 1 : 0;
+      // The pass reads up to low classes x words per vertex past the bound: past kMaxInfraWords
+      // (an incumbent of hundreds in rows of hundreds of words: planted cliques of thousands),
+      // it costs more than the branches it saves, so such nodes colour without it.
+      const int low_classes =
+          infra_ && static_cast<long long>(kmin - 1) * W_ <= kMaxInfraWords ? kmin - 1 : 0;
       if (low_classes > 0) {
         classes_.assign(static_cast<std::size_t>(low_classes) * W_, 0);
         frozen_.assign(static_cast<std::size_t>(low_classes), 0);
@@ -269,6 +273,7 @@ class BranchAndBound {
   // Nodes that prune at once are not worth packing (most children of the root), nor rows of
   // under 32 words (p_hat1000-1, 16 words: 35% slower packed, its subtrees are small).
   static constexpr int kCompactWords = 32;
+  static constexpr long long kMaxInfraWords = 4096;
   static constexpr int kSparse = 8;
   bool worth_packing(int candidates) const {
     return W_ >= kCompactWords && candidates * kSparse <= g_.size();

@@ -148,7 +148,8 @@ bool LocalSearch::run_until(long long step_goal, long long work_goal,
     // Expansion, then plateau moves while they keep some of the clique the plateau started from
     // and open no addition; back to expansion when one opens (DLS-MC's phases).
     for (;;) {
-      for (int v; (v = pick(0)) >= 0; ++steps_) c.add(last_ = v);
+      // Checked per addition: a first descent into a planted clique of thousands is long.
+      for (int v; !done() && (v = pick(0)) >= 0; ++steps_) c.add(last_ = v);
       if (c.members().size() > best_.size()) best_ = c.members();
       if (done()) break;
       ++phase_;

@@ -227,6 +227,16 @@ TEST(LocalSearch, SameSeedSameClimbAndTargetStopsIt) {
   EXPECT_TRUE(g.is_clique(c));
   EXPECT_LT(steps_b, 100);  // a first descent in a dense graph passes 5 at once
   EXPECT_TRUE(local_search_clique(BitGraph(0), p).empty());
+  // The step budget holds inside a descent too (a planted clique of thousands is one descent).
+  BitGraph complete(300);
+  for (int u = 0; u < 300; ++u)
+    for (int v = u + 1; v < 300; ++v) complete.add_edge(u, v);
+  LocalSearchParams few;
+  few.max_steps = 10;
+  const auto part = local_search_clique(complete, few, &steps_a);
+  EXPECT_LE(steps_a, 10);
+  EXPECT_TRUE(complete.is_clique(part));
+  EXPECT_LE(part.size(), 11u);
 }
 
 TEST(MaxClique, InterleavedLocalSearchKeepsTheSearchExactMidTree) {
