@@ -329,7 +329,7 @@ class BranchAndBound {
     Word* next = level(depth + 1).data();
     const int size = static_cast<int>(clique_.size());
     const int count = colour(P, depth, std::max(1, best_size_ - size + 1));
-    work_ += static_cast<long long>(coloured_) * W_;
+    root_->work_ += static_cast<long long>(coloured_) * W_;  // packed subtrees count too
     if (colours_ == coloured_) {
       // Every class is a singleton, so each vertex is adjacent to all before it: P is a clique, and
       // C + P is the best of this subtree. Ends the long descent into a large planted clique.
