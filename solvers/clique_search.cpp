@@ -166,8 +166,8 @@ CliqueSearchResult run_bbmcx_ls(const BitGraph& g, const CliqueSearchParams& p) 
   ls.target = max_core(cd) + 1;
   ls.seed = derive_seed(p.seed, {kLocalSearchStream});
   long long steps = 0;
-  CliqueSearchResult r = finish(search_ordered(g, order, 0, budget, true, true, &ls, &steps), true,
-                                budget, ls.target);
+  CliqueSearchResult r =
+      finish(search_ordered(g, order, 0, budget, true, true, &ls, &steps), true, budget, ls.target);
   r.local_search_steps = steps;
   return r;
 }
@@ -343,6 +343,7 @@ std::vector<CliqueAlgorithmInfo> CliqueAlgorithms::list() {
 }
 
 void register_clique_peers();  // clique_peers.cpp: cliquer, igraph
+CliqueSearchResult run_doll(const BitGraph& g, const CliqueSearchParams& p);  // clique_doll.cpp
 
 void register_clique_algorithms() {
   static std::once_flag once;
@@ -358,8 +359,8 @@ void register_clique_algorithms() {
                            "one neighbour in a class sees none of its neighbours in another)",
                            true, run_bbmc<true, true>});
     CliqueAlgorithms::add({"bbmcx-ls",
-                           "BBMCX with a DLS-MC local search interleaved for the lower bound",
-                           true, run_bbmcx_ls});
+                           "BBMCX with a DLS-MC local search interleaved for the lower bound", true,
+                           run_bbmcx_ls});
     CliqueAlgorithms::add(
         {"bbmc-kcore",
          "BBMC after a greedy lower bound and k-core pruning (TEASER++/PMC-style pre-pruning)",
@@ -368,6 +369,9 @@ void register_clique_algorithms() {
         {"bbmc-dec",
          "BBMC on each vertex's later neighbours in degeneracy order (PMC-style decomposition)",
          true, run_bbmc_dec});
+    CliqueAlgorithms::add({"doll",
+                           "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",
+                           true, run_doll});
     CliqueAlgorithms::add({"greedy",
                            "greedy clique by core number: a heuristic, no optimality proof", false,
                            run_greedy});

@@ -10,6 +10,8 @@
 //   bbmc-dec    PMC-style decomposition: for each vertex in degeneracy order, BBMC on its later
 //               neighbours (a compact subgraph of at most degeneracy vertices); exact; parallel
 //               with the same clique for any thread count
+//   doll        Ostergard's Russian doll search (cliquer's algorithm) on bitsets; exact
+//               (clique_doll.cpp)
 //   greedy      the greedy clique alone: no optimality proof (to show what exactness buys)
 //   cliquer, igraph  peers from Debian's libcliquer and libigraph (clique_peers.cpp)
 #include <cstdint>

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <set>
 
+#include "solvers/bbmc.hpp"
 #include "solvers/max_clique.hpp"
 #include "test_util.hpp"
 
@@ -337,6 +338,32 @@ TEST(MaximalCliques, CapStopsTheEnumeration) {
   int reports = 0;
   EXPECT_FALSE(for_each_maximal_clique(g, p, [&](const std::vector<int>&) { ++reports; }));
   EXPECT_EQ(reports, 10);
+}
+
+// Relabelling scatters bits on sparse rows and transposes 64 x 64 blocks on dense ones: both must
+// keep every pair, for whole-graph orders and subsets, across word boundaries.
+TEST(Permuted, KeepsEveryPairOnSparseAndDenseRows) {
+  std::mt19937_64 rng(43);
+  for (double density : {0.01, 0.05, 0.5, 0.95}) {
+    for (int n : {1, 63, 64, 65, 200}) {
+      const BitGraph g = test::random_graph(n, density, rng);
+      std::vector<int> all(static_cast<std::size_t>(n));
+      std::iota(all.begin(), all.end(), 0);
+      for (int k : {n, (n + 1) / 2}) {
+        std::shuffle(all.begin(), all.end(), rng);
+        const std::vector<int> vertices(all.begin(), all.begin() + k);
+        const BitGraph h = detail::permuted(g, vertices);
+        ASSERT_EQ(h.size(), k);
+        for (int i = 0; i < k; ++i) {
+          for (int j = 0; j < k; ++j) {
+            ASSERT_EQ(h.adjacent(i, j), g.adjacent(vertices[static_cast<std::size_t>(i)],
+                                                   vertices[static_cast<std::size_t>(j)]))
+                << "density " << density << " n " << n << " k " << k << " pair " << i << "," << j;
+          }
+        }
+      }
+    }
+  }
 }
 
 TEST(CoreDecomposition, MatchesNaivePeeling) {
