@@ -145,7 +145,8 @@ BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vert
 // the threshold sits above it.
 constexpr long long kTransposeBitsPerWord = 8;
 
-BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
+BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,
+                  SteadyClock::time_point deadline) {
   const int k = static_cast<int>(vertices.size()), W = g.words();
   BitGraph sub(k);
   long long bits = 0;  // one scattered write each on the direct path
@@ -155,6 +156,7 @@ BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
     for (int i = 0; i < k; ++i)
       index[static_cast<std::size_t>(vertices[static_cast<std::size_t>(i)])] = i;
     for (int i = 0; i < k; ++i) {
+      if ((i & 255) == 255) throw_if_past(deadline);
       Word* out = sub.row(i);
       for_each_bit(g.row(vertices[static_cast<std::size_t>(i)]), W, [&](int u) {
         const int local = index[static_cast<std::size_t>(u)];
@@ -169,6 +171,7 @@ BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices) {
   std::vector<Word> T(static_cast<std::size_t>(W) * kBits * static_cast<std::size_t>(Wk), 0);
   Word block[kBits];
   for (int bi = 0; bi < Wk; ++bi) {
+    if ((bi & 3) == 3) throw_if_past(deadline);
     for (int bj = 0; bj < W; ++bj) {
       Word any = 0;
       for (int r = 0; r < kBits; ++r) {

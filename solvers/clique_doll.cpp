@@ -26,11 +26,15 @@ namespace {
 /// the uncoloured vertex of largest degree among the uncoloured vertices that fits, until none
 /// fits (ties to the larger id). The first class becomes the innermost doll. `classes` receives
 /// the number of classes: a proper colouring, so an upper bound on omega.
-std::vector<int> colour_class_order(const BitGraph& g, int& classes) {
+std::vector<int> colour_class_order(const BitGraph& g, int& classes,
+                                    SteadyClock::time_point deadline) {
   const int n = g.size(), W = g.words();
   std::vector<int> degree(static_cast<std::size_t>(n)), order;
   order.reserve(static_cast<std::size_t>(n));
-  for (int v = 0; v < n; ++v) degree[static_cast<std::size_t>(v)] = g.degree(v);
+  for (int v = 0; v < n; ++v) {
+    if ((v & 1023) == 1023) detail::throw_if_past(deadline);
+    degree[static_cast<std::size_t>(v)] = g.degree(v);
+  }
   std::vector<Word> uncoloured(static_cast<std::size_t>(W), 0), fits(uncoloured.size());
   for (int v = 0; v < n; ++v)
     uncoloured[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
@@ -44,6 +48,7 @@ std::vector<int> colour_class_order(const BitGraph& g, int& classes) {
           pick = u;
       });
       if (pick < 0) break;
+      if ((order.size() & 255) == 255) detail::throw_if_past(deadline);
       order.push_back(pick);
       const Word* row = g.row(pick);
       fits[static_cast<std::size_t>(pick / kBits)] &= ~(Word{1} << (pick % kBits));
@@ -154,8 +159,8 @@ CliqueSearchResult run_doll(const BitGraph& g, const CliqueSearchParams& p) {
   budget.deadline = deadline_after(p.time_limit_s);
   budget.node_limit = p.node_limit;
   int upper = 0;
-  const std::vector<int> order = colour_class_order(g, upper);
-  const BitGraph h = detail::permuted(g, order);
+  const std::vector<int> order = colour_class_order(g, upper, budget.deadline);
+  const BitGraph h = detail::permuted(g, order, budget.deadline);
   RussianDoll doll(h, budget);
   doll.run(upper);
   CliqueSearchResult r;

@@ -21,6 +21,12 @@ using detail::SearchBudget;
 using detail::Word;
 
 std::vector<int> greedy_clique(const BitGraph& g, const CoreDecomposition& cd) {
+  bool stopped = false;
+  return detail::greedy_clique(g, cd, detail::kNoDeadline, stopped);
+}
+
+std::vector<int> detail::greedy_clique(const BitGraph& g, const CoreDecomposition& cd,
+                                       SteadyClock::time_point deadline, bool& stopped) {
   const int W = g.words();
   std::vector<int> best, clique;
   std::vector<Word> cand(static_cast<std::size_t>(W));
@@ -38,19 +44,32 @@ std::vector<int> greedy_clique(const BitGraph& g, const CoreDecomposition& cd) {
       clique.push_back(pick);
       const Word* row = g.row(pick);
       for (int w = 0; w < W; ++w) cand[w] &= row[w];
+      if ((clique.size() & 63) == 0 && SteadyClock::now() >= deadline) stopped = true;
+      if (stopped) break;  // a partial greedy clique is still a clique
     }
     if (clique.size() > best.size()) best = clique;
+    if (stopped || SteadyClock::now() >= deadline) {
+      stopped = true;
+      break;
+    }
   }
   return best;
 }
 
 CoreDecomposition core_decomposition(const BitGraph& g) {
+  return detail::core_decomposition(g, detail::kNoDeadline);
+}
+
+CoreDecomposition detail::core_decomposition(const BitGraph& g, SteadyClock::time_point deadline) {
   const int n = g.size();
   CoreDecomposition cd;
   std::vector<int> deg(static_cast<std::size_t>(n)), pos(static_cast<std::size_t>(n)),
       vert(static_cast<std::size_t>(n));
   int max_deg = 0;
-  for (int v = 0; v < n; ++v) max_deg = std::max(max_deg, deg[v] = g.degree(v));
+  for (int v = 0; v < n; ++v) {
+    if ((v & 1023) == 1023) throw_if_past(deadline);
+    max_deg = std::max(max_deg, deg[v] = g.degree(v));
+  }
   std::vector<int> bin(static_cast<std::size_t>(max_deg) + 1, 0);
   for (int v = 0; v < n; ++v) ++bin[deg[v]];
   for (int d = 0, start = 0; d <= max_deg; ++d) {
@@ -69,6 +88,7 @@ CoreDecomposition core_decomposition(const BitGraph& g) {
   std::vector<Word> alive(static_cast<std::size_t>(W), 0);
   for (int v = 0; v < n; ++v) alive[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
   for (int i = 0; i < n; ++i) {
+    if ((i & 255) == 255) throw_if_past(deadline);
     const int v = vert[i];
     alive[static_cast<std::size_t>(v / kBits)] &= ~(Word{1} << (v % kBits));
     const Word* row = g.row(v);
@@ -120,7 +140,7 @@ std::vector<int> search_ordered(const BitGraph& g, const std::vector<int>& verti
                                 SearchBudget& budget, bool recolour = false, bool infra = false,
                                 const LocalSearchParams* local_search = nullptr,
                                 long long* local_steps = nullptr) {
-  const BitGraph sub = detail::permuted(g, vertices);
+  const BitGraph sub = detail::permuted(g, vertices, budget.deadline);
   BranchAndBound bb(sub, incumbent, budget, recolour, infra);
   std::unique_ptr<LocalSearch> helper;
   if (local_search) {
@@ -150,7 +170,7 @@ CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudge
 template <bool kRecolour, bool kInfra = false>
 CliqueSearchResult run_bbmc(const BitGraph& g, const CliqueSearchParams& p) {
   SearchBudget budget = make_budget(p);
-  const CoreDecomposition cd = core_decomposition(g);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
   const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
   return finish(search_ordered(g, order, 0, budget, kRecolour, kInfra), true, budget,
                 max_core(cd) + 1);
@@ -160,7 +180,7 @@ CliqueSearchResult run_bbmc(const BitGraph& g, const CliqueSearchParams& p) {
 // clique and one search tree.
 CliqueSearchResult run_bbmcx_ls(const BitGraph& g, const CliqueSearchParams& p) {
   SearchBudget budget = make_budget(p);
-  const CoreDecomposition cd = core_decomposition(g);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
   const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
   LocalSearchParams ls;
   ls.target = max_core(cd) + 1;
@@ -175,9 +195,10 @@ CliqueSearchResult run_bbmcx_ls(const BitGraph& g, const CliqueSearchParams& p) 
 // bbmc-kcore: greedy lower bound, drop vertices whose core number cannot beat it, BBMC on the rest.
 CliqueSearchResult run_bbmc_kcore(const BitGraph& g, const CliqueSearchParams& p) {
   SearchBudget budget = make_budget(p);
-  const CoreDecomposition cd = core_decomposition(g);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
   const int upper = max_core(cd) + 1;
-  std::vector<int> best = greedy_clique(g, cd);
+  std::vector<int> best = detail::greedy_clique(g, cd, budget.deadline, budget.stopped);
+  if (budget.stopped) return finish(std::move(best), true, budget, upper);
   const int incumbent = static_cast<int>(best.size());
   if (incumbent < upper) {
     std::vector<int> kept;  // a clique larger than the incumbent lies in the incumbent-core
@@ -195,11 +216,11 @@ CliqueSearchResult run_bbmc_kcore(const BitGraph& g, const CliqueSearchParams& p
 // compact BBMC problem, highest core first, is what PMC does (with a weaker bound inside).
 class Decomposition {
  public:
-  explicit Decomposition(const BitGraph& g)
-      : cd_(core_decomposition(g)),
+  Decomposition(const BitGraph& g, SteadyClock::time_point deadline)
+      : cd_(detail::core_decomposition(g, deadline)),
         order_(cd_.order.rbegin(), cd_.order.rend()),
         // Relabel in min-width order (0 = removed last): v's later neighbours are the smaller ids.
-        h_(detail::permuted(g, order_)) {}
+        h_(detail::permuted(g, order_, deadline)) {}
 
   const CoreDecomposition& cores() const { return cd_; }
   int size() const { return h_.size(); }
@@ -244,10 +265,13 @@ class Decomposition {
 // Phase 1 records, per vertex, the size it proved no larger clique through it exceeds, so the
 // canonical pass re-solves only vertices that phase 1 could not rule out (with one thread: one).
 CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) {
-  const Decomposition dec(g);
+  const SteadyClock::time_point deadline = deadline_after(p.time_limit_s);
+  const Decomposition dec(g, deadline);
   const int n = dec.size();
   const int upper = max_core(dec.cores()) + 1;
-  std::vector<int> best = greedy_clique(g, dec.cores());
+  SearchBudget greedy_budget;
+  std::vector<int> best = detail::greedy_clique(g, dec.cores(), deadline, greedy_budget.stopped);
+  if (greedy_budget.stopped) return finish(std::move(best), true, greedy_budget, upper);
   const int threads = std::max(
       1, p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency()));
 
@@ -307,9 +331,10 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
 }
 
 CliqueSearchResult run_greedy(const BitGraph& g, const CliqueSearchParams& p) {
-  const SearchBudget budget = make_budget(p);
-  const CoreDecomposition cd = core_decomposition(g);
-  return finish(greedy_clique(g, cd), false, budget, max_core(cd) + 1);
+  SearchBudget budget = make_budget(p);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
+  std::vector<int> clique = detail::greedy_clique(g, cd, budget.deadline, budget.stopped);
+  return finish(std::move(clique), false, budget, max_core(cd) + 1);
 }
 
 std::map<std::string, CliqueAlgorithmInfo>& algorithms() {
@@ -321,6 +346,18 @@ std::map<std::string, CliqueAlgorithmInfo>& algorithms() {
 
 void CliqueAlgorithms::add(CliqueAlgorithmInfo info) {
   const std::string name = info.name;
+  // A limit that passes during set-up (core numbers, orders, relabelling) stops the search before
+  // it starts: nothing found yet, status time_limit.
+  info.run = [run = std::move(info.run)](const BitGraph& g, const CliqueSearchParams& p) {
+    try {
+      return run(g, p);
+    } catch (const detail::OutOfTime&) {
+      CliqueSearchResult r;
+      r.stopped = true;
+      r.upper_bound = g.size();
+      return r;
+    }
+  };
   if (!algorithms().emplace(name, std::move(info)).second) {
     throw std::logic_error("clique algorithm '" + name + "' is registered twice");
   }

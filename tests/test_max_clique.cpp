@@ -109,6 +109,20 @@ TEST_P(Exact, TimeLimitReturnsBestSoFarWithStatus) {
   EXPECT_TRUE(g.is_clique(r.clique));
 }
 
+// A limit already past when the search is called: the set-up (core numbers, orders, relabelling;
+// a few hundred ms at n = 20,000) gives up before any branch node, with status time_limit.
+TEST_P(Exact, PassedDeadlineStopsBeforeTheSearch) {
+  std::mt19937_64 rng(7);
+  const BitGraph g = test::random_graph(2000, 0.5, rng);
+  CliqueSearchParams p;
+  p.time_limit_s = 0;
+  const auto r = solve(GetParam(), g, p);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_FALSE(r.optimal);
+  EXPECT_EQ(r.nodes, 0);
+  EXPECT_TRUE(g.is_clique(r.clique));
+}
+
 INSTANTIATE_TEST_SUITE_P(Algorithms, Exact, ::testing::ValuesIn(exact_algorithms()),
                          [](const auto& info) {
                            std::string name = info.param;
