@@ -390,6 +390,27 @@ class BranchAndBound {
   long long work_ = 0;  // words touched colouring, over all nodes (for interleaving)
 };
 
+inline SearchBudget make_budget(const CliqueSearchParams& p) {
+  SearchBudget b;
+  b.deadline = deadline_after(p.time_limit_s);
+  b.node_limit = p.node_limit;
+  return b;
+}
+
+/// The result of a search: `clique` sorted, optimal when an exact search finished or the clique
+/// meets the upper bound.
+inline CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudget& budget,
+                                 int upper) {
+  CliqueSearchResult r;
+  std::sort(clique.begin(), clique.end());
+  r.clique = std::move(clique);
+  r.stopped = budget.stopped;
+  r.nodes = budget.nodes;
+  r.upper_bound = upper;
+  r.optimal = (exact && !budget.stopped) || static_cast<int>(r.clique.size()) == upper;
+  return r;
+}
+
 /// Thrown by the set-up steps of a search (core decomposition, orders, relabelling: O(n^2 / 64)
 /// and more, a few hundred ms at n = 20,000) once the deadline has passed; CliqueAlgorithms turns
 /// it into an empty result with status time_limit, so a limit holds before the search starts too.

@@ -155,22 +155,15 @@ class RussianDoll {
 }  // namespace
 
 CliqueSearchResult run_doll(const BitGraph& g, const CliqueSearchParams& p) {
-  SearchBudget budget;
-  budget.deadline = deadline_after(p.time_limit_s);
-  budget.node_limit = p.node_limit;
+  SearchBudget budget = detail::make_budget(p);
   int upper = 0;
   const std::vector<int> order = colour_class_order(g, upper, budget.deadline);
   const BitGraph h = detail::permuted(g, order, budget.deadline);
   RussianDoll doll(h, budget);
   doll.run(upper);
-  CliqueSearchResult r;
-  for (int k : doll.best()) r.clique.push_back(order[static_cast<std::size_t>(k)]);
-  std::sort(r.clique.begin(), r.clique.end());
-  r.stopped = budget.stopped;
-  r.nodes = budget.nodes;
-  r.upper_bound = upper;
-  r.optimal = !budget.stopped || static_cast<int>(r.clique.size()) == upper;
-  return r;
+  std::vector<int> clique;
+  for (int k : doll.best()) clique.push_back(order[static_cast<std::size_t>(k)]);
+  return detail::finish(std::move(clique), true, budget, upper);
 }
 
 }  // namespace verifybench

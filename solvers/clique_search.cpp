@@ -15,8 +15,10 @@
 namespace verifybench {
 
 using detail::BranchAndBound;
+using detail::finish;
 using detail::for_each_bit;
 using detail::kBits;
+using detail::make_budget;
 using detail::SearchBudget;
 using detail::Word;
 
@@ -122,13 +124,6 @@ constexpr long long kLocalInitialVisitsPerVertex = 100;
 constexpr double kLocalShare = 0.1;
 constexpr std::uint64_t kLocalSearchStream = 0x15;
 
-SearchBudget make_budget(const CliqueSearchParams& p) {
-  SearchBudget b;
-  b.deadline = deadline_after(p.time_limit_s);
-  b.node_limit = p.node_limit;
-  return b;
-}
-
 int max_core(const CoreDecomposition& cd) {
   return cd.core.empty() ? -1 : *std::max_element(cd.core.begin(), cd.core.end());
 }
@@ -152,18 +147,6 @@ std::vector<int> search_ordered(const BitGraph& g, const std::vector<int>& verti
   std::vector<int> found;
   for (int k : bb.best()) found.push_back(vertices[static_cast<std::size_t>(k)]);
   return found;
-}
-
-CliqueSearchResult finish(std::vector<int> clique, bool exact, const SearchBudget& budget,
-                          int upper) {
-  CliqueSearchResult r;
-  std::sort(clique.begin(), clique.end());
-  r.clique = std::move(clique);
-  r.stopped = budget.stopped;
-  r.nodes = budget.nodes;
-  r.upper_bound = upper;
-  r.optimal = (exact && !budget.stopped) || static_cast<int>(r.clique.size()) == upper;
-  return r;
 }
 
 // bbmc / bbmcr / bbmcx: the whole graph in min-width order (highest core first), no pre-pruning.
