@@ -5,6 +5,8 @@
 // Skips when ../shared/data/dimacs is absent.
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -25,17 +27,17 @@ void report(benchmark::State& state, std::size_t omega, long long nodes) {
   state.counters["nodes"] = static_cast<double>(nodes);
 }
 
-void BM_Ours(benchmark::State& state, const std::string& graph, const std::string& algorithm) {
-  const vb::BitGraph g = vb::read_dimacs(kDir + graph + ".clq");
-  vb::register_clique_algorithms();
+void BM_Ours(benchmark::State& state, std::shared_ptr<const vb::BitGraph> graph,
+             const std::string& algorithm) {
+  const vb::BitGraph& g = *graph;
   const auto& info = vb::CliqueAlgorithms::get(algorithm);
   vb::CliqueSearchResult r;
   for (auto _ : state) r = info.run(g, {});
   report(state, r.clique.size(), r.nodes);
 }
 
-void BM_Cliquer(benchmark::State& state, const std::string& graph) {
-  const vb::BitGraph g = vb::read_dimacs(kDir + graph + ".clq");
+void BM_Cliquer(benchmark::State& state, std::shared_ptr<const vb::BitGraph> graph) {
+  const vb::BitGraph& g = *graph;
   // The rows are contiguous, n rows of words() words (BitGraph::row).
   const std::unique_ptr<vb_cliquer_graph, void (*)(vb_cliquer_graph*)> handle(
       vb_cliquer_graph_new(g.size(), reinterpret_cast<const unsigned long long*>(g.row(0)),
@@ -59,15 +61,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_dimacs: %s absent, nothing to run\n", kDir.c_str());
     return 0;
   }
-  for (const char* graph : {"hamming8-4", "johnson16-2-4", "keller4", "brock200_2", "p_hat300-1",
-                            "p_hat500-1", "c-fat500-10", "hamming8-2", "san200_0.9_1"}) {
+  vb::register_clique_algorithms();
+  for (const char* name : {"hamming8-4", "johnson16-2-4", "keller4", "brock200_2", "p_hat300-1",
+                           "p_hat500-1", "c-fat500-10", "hamming8-2", "san200_0.9_1"}) {
+    std::shared_ptr<const vb::BitGraph> graph;
+    try {
+      graph = std::make_shared<const vb::BitGraph>(vb::read_dimacs(kDir + name + ".clq"));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_dimacs: %s\n", e.what());
+      return 1;
+    }
     for (const char* algorithm : {"doll", "bbmc", "bbmcx", "bbmc-dec"}) {
-      benchmark::RegisterBenchmark((std::string(graph) + "/" + algorithm).c_str(), BM_Ours,
-                                   std::string(graph), std::string(algorithm))
+      benchmark::RegisterBenchmark((std::string(name) + "/" + algorithm).c_str(), BM_Ours, graph,
+                                   std::string(algorithm))
           ->Unit(benchmark::kMillisecond);
     }
-    benchmark::RegisterBenchmark((std::string(graph) + "/cliquer").c_str(), BM_Cliquer,
-                                 std::string(graph))
+    benchmark::RegisterBenchmark((std::string(name) + "/cliquer").c_str(), BM_Cliquer, graph)
         ->Unit(benchmark::kMillisecond);
   }
   benchmark::RunSpecifiedBenchmarks();
