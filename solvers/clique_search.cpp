@@ -46,8 +46,10 @@ std::vector<int> detail::greedy_clique(const BitGraph& g, const CoreDecompositio
       clique.push_back(pick);
       const Word* row = g.row(pick);
       for (int w = 0; w < W; ++w) cand[w] &= row[w];
-      if ((clique.size() & 63) == 0 && SteadyClock::now() >= deadline) stopped = true;
-      if (stopped) break;  // a partial greedy clique is still a clique
+      if ((clique.size() & 63) == 0 && SteadyClock::now() >= deadline) {
+        stopped = true;  // a partial greedy clique is still a clique
+        break;
+      }
     }
     if (clique.size() > best.size()) best = clique;
     if (stopped || SteadyClock::now() >= deadline) {
