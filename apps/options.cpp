@@ -8,23 +8,15 @@
 namespace verifybench {
 
 double parse_real(const std::string& what, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) {
-    throw UsageError(what + ": '" + text + "' is not a finite number");
-  }
-  return v;
+  const ParsedReal v = parse_real_token(text);
+  if (v.error != NumberError::none) throw UsageError(what + ": '" + text + "' is not a finite number");
+  return v.value;
 }
 
 long long parse_integer(const std::string& what, const std::string& text) {
-  errno = 0;
-  char* end = nullptr;
-  const long long v = std::strtoll(text.c_str(), &end, 10);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) {
-    throw UsageError(what + ": '" + text + "' is not an integer");
-  }
-  return v;
+  const auto v = parse_integer_token(text);
+  if (!v) throw UsageError(what + ": '" + text + "' is not an integer");
+  return *v;
 }
 
 Options& Options::add(const std::string& name, const std::string& value_name,
@@ -121,13 +113,9 @@ long long Options::integer(const std::string& name, long long min, long long max
 
 std::uint64_t Options::seed(const std::string& name) const {
   const std::string t = text(name);
-  errno = 0;
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(t.c_str(), &end, 10);
-  if (t.empty() || t[0] == '-' || end != t.c_str() + t.size() || errno == ERANGE) {
-    bad(name, t, "is not an unsigned 64-bit integer");
-  }
-  return v;
+  const auto v = parse_unsigned_token(t);
+  if (!v) bad(name, t, "is not an unsigned 64-bit integer");
+  return *v;
 }
 
 std::vector<std::string> Options::list(const std::string& name) const {

@@ -7,13 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace verifybench {
+#include "core/errors.hpp"
 
-/// Bad command line or input: the CLI prints the message and exits with code 2.
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace verifybench {
 
 class Options {
  public:

@@ -6,15 +6,16 @@
 #include <tuple>
 #include <variant>
 
-#include "apps/harness.hpp"
+#include "harness/builtin.hpp"
+#include "harness/harness.hpp"
 #include "apps/options.hpp"
 #include "frontend/extract.hpp"
-#include "generators/dimacs.hpp"
-#include "generators/dump_reader.hpp"
+#include "datasets/dimacs.hpp"
+#include "datasets/text_dump.hpp"
 #include "reports/report.hpp"
-#include "solvers/max_clique.hpp"
+#include "cliques/max_clique.hpp"
 #include "solvers/registry.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace vb = verifybench;
 using nlohmann::json;

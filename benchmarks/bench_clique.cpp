@@ -5,10 +5,10 @@
 
 #include <filesystem>
 
-#include "core/compatibility_graph.hpp"
-#include "generators/dump_reader.hpp"
+#include "graph/compatibility_graph.hpp"
+#include "datasets/text_dump.hpp"
 #include "generators/synthetic.hpp"
-#include "solvers/max_clique.hpp"
+#include "cliques/max_clique.hpp"
 
 namespace vb = verifybench;
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "generators/dimacs.hpp"
-#include "solvers/cliquer_shim.h"
-#include "solvers/max_clique.hpp"
+#include "datasets/dimacs.hpp"
+#include "cliques/detail/cliquer_shim.h"
+#include "cliques/max_clique.hpp"
 
 namespace vb = verifybench;
 

@@ -1,7 +1,7 @@
 // Correspondence graph construction, Eq. (1): n^2/2 pair tests. Reports pair tests per second.
 #include <benchmark/benchmark.h>
 
-#include "core/compatibility_graph.hpp"
+#include "graph/compatibility_graph.hpp"
 #include "generators/synthetic.hpp"
 
 namespace vb = verifybench;

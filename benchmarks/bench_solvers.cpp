@@ -1,6 +1,7 @@
 // Each registered solver on synthetic 3D sets: args are n and the outlier ratio in percent.
 #include <benchmark/benchmark.h>
 
+#include "harness/builtin.hpp"
 #include "generators/synthetic.hpp"
 #include "solvers/registry.hpp"
 

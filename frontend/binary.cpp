@@ -1,6 +1,6 @@
 #include "frontend/binary.hpp"
 
-#include "core/multiversion.hpp"
+#include "core/detail/multiversion.hpp"
 
 namespace verifybench {
 

@@ -10,14 +10,14 @@
 #include <fstream>
 #include <sstream>
 
-#include "generators/dump_reader.hpp"
+#include "core/errors.hpp"
 
 namespace verifybench {
 
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw InputError(path + ": " + what);
+  input_error(path, 0, what);
 }
 
 std::string extension(const std::string& path) {
@@ -85,15 +85,12 @@ Rigid<3> read_transform(const std::string& path) {
   std::vector<double> v;
   std::string token;
   while (in >> token) {
-    try {
-      std::size_t used = 0;
-      const double x = std::stod(token, &used);
-      if (used != token.size() || !std::isfinite(x)) throw std::invalid_argument(token);
-      v.push_back(x);
-    } catch (const std::exception&) {
+    const ParsedReal x = parse_real_token(token);
+    if (x.error != NumberError::none) {
       fail(path,
            "value " + std::to_string(v.size() + 1) + " '" + token + "' is not a finite number");
     }
+    v.push_back(x.value);
   }
   if (v.size() != 12 && v.size() != 16) {
     fail(path, std::to_string(v.size()) + " numbers; expected 12 (3x4) or 16 (4x4), row-major");

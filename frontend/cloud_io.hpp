@@ -11,7 +11,7 @@ namespace verifybench {
 
 using Cloud = std::vector<Eigen::Vector3f>;
 
-/// By extension (.bin, .pcd, .ply). Throws InputError (generators/dump_reader.hpp) naming the
+/// By extension (.bin, .pcd, .ply). Throws InputError (core/errors.hpp) naming the
 /// file and what is wrong: unreadable, a size that is not whole records, a non-finite coordinate
 /// (with its point index), or no points at all.
 Cloud read_cloud(const std::string& path);

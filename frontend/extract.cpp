@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

@@ -9,7 +9,7 @@
 
 #include "frontend/features.hpp"
 #include "frontend/hbst.hpp"
-#include "generators/dump_format.hpp"
+#include "datasets/dump_format.hpp"
 
 namespace verifybench {
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "frontend/features.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

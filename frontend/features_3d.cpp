@@ -13,7 +13,7 @@
 
 #include "frontend/bshot.hpp"
 #include "frontend/features.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

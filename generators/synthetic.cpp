@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/random.hpp"
+#include "core/registry.hpp"
 
 namespace verifybench {
 
@@ -207,32 +208,63 @@ void fill_bev_orb(const SyntheticParams& p, Draws<2>& draw, const Rigid<2>& T, L
   }
 }
 
+// The kinds, in the order `verifybench list` shows them; each fills a set in 2D and/or 3D.
+template <int Dim>
+using Fill = void (*)(const SyntheticParams&, Draws<Dim>&, const Rigid<Dim>&, LabeledSet<Dim>&);
+
+struct Kind {
+  GeneratorInfo info;
+  Fill<2> fill2;
+  Fill<3> fill3;
+};
+
+const std::vector<Kind>& kinds() {
+  static const std::vector<Kind> table = {
+      {{"uniform", "outlier targets uniform in the scene; Gaussian noise on inliers", true, true},
+       fill_cube_kinds<2>, fill_cube_kinds<3>},
+      {{"rigid-group",
+        "adds a rigidly consistent wrong group (--group-ratio x inliers) following a second motion",
+        true, true},
+       fill_cube_kinds<2>, fill_cube_kinds<3>},
+      {{"repetitive",
+        "corridor lattice (--grid-spacing); outliers match pillars 1-2 steps along, each shift a "
+        "consistent wrong group",
+        true, true},
+       fill_repetitive<2>, fill_repetitive<3>},
+      {{"partial-overlap", "inliers only in a slab of --overlap of the scene; outliers anywhere",
+        true, true},
+       fill_cube_kinds<2>, fill_cube_kinds<3>},
+      {{"heavy-tailed", "Student-t noise on inliers (--tail-dof), uniform outliers", true, true},
+       fill_cube_kinds<2>, fill_cube_kinds<3>},
+      {{"anisotropic", "range noise --anisotropy x larger along the sensor ray, uniform outliers",
+        true, true},
+       fill_cube_kinds<2>, fill_cube_kinds<3>},
+      {{"near-true", "outliers within --near-radius of the true match (descriptor confusions)",
+        true, true},
+       fill_cube_kinds<2>, fill_cube_kinds<3>},
+      {{"bev-orb",
+        "2D bird's-eye-view ORB-like matches: corners on walls, --cell quantisation, near and "
+        "cross-wall confusions",
+        true, false},
+       fill_bev_orb, nullptr},
+  };
+  return table;
+}
+
+const Registry<GeneratorInfo>& generators() {
+  static Registry<GeneratorInfo> registry("kind", Registry<GeneratorInfo>::Order::as_added);
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (const Kind& k : kinds()) registry.add(k.info);
+  });
+  return registry;
+}
+
 }  // namespace
 
-const std::vector<GeneratorInfo>& list_generators() {
-  static const std::vector<GeneratorInfo> kinds = {
-      {"uniform", "outlier targets uniform in the scene; Gaussian noise on inliers", true, true},
-      {"rigid-group",
-       "adds a rigidly consistent wrong group (--group-ratio x inliers) following a second motion",
-       true, true},
-      {"repetitive",
-       "corridor lattice (--grid-spacing); outliers match pillars 1-2 steps along, each shift a "
-       "consistent wrong group",
-       true, true},
-      {"partial-overlap", "inliers only in a slab of --overlap of the scene; outliers anywhere",
-       true, true},
-      {"heavy-tailed", "Student-t noise on inliers (--tail-dof), uniform outliers", true, true},
-      {"anisotropic", "range noise --anisotropy x larger along the sensor ray, uniform outliers",
-       true, true},
-      {"near-true", "outliers within --near-radius of the true match (descriptor confusions)", true,
-       true},
-      {"bev-orb",
-       "2D bird's-eye-view ORB-like matches: corners on walls, --cell quantisation, near and "
-       "cross-wall confusions",
-       true, false},
-  };
-  return kinds;
-}
+std::vector<GeneratorInfo> list_generators() { return generators().list(); }
+
+const GeneratorInfo& find_generator(const std::string& kind) { return generators().get(kind); }
 
 void SyntheticParams::validate() const {
   require(n >= 1, "n", n, "an integer >= 1");
@@ -260,15 +292,16 @@ void SyntheticParams::validate() const {
 template <int Dim>
 LabeledSet<Dim> make_synthetic(const SyntheticParams& params) {
   params.validate();
-  const auto& kinds = list_generators();
-  const auto it = std::find_if(kinds.begin(), kinds.end(),
-                               [&](const GeneratorInfo& g) { return g.name == params.kind; });
-  if (it == kinds.end()) {
-    std::string known;
-    for (const auto& g : kinds) known += (known.empty() ? "" : ", ") + g.name;
-    throw std::invalid_argument("unknown generator '" + params.kind + "'; known: " + known);
+  find_generator(params.kind);  // throws UnknownName listing the kinds
+  const auto it = std::find_if(kinds().begin(), kinds().end(),
+                               [&](const Kind& k) { return k.info.name == params.kind; });
+  Fill<Dim> fill = nullptr;
+  if constexpr (Dim == 2) {
+    fill = it->fill2;
+  } else {
+    fill = it->fill3;
   }
-  if ((Dim == 2 && !it->supports_2d) || (Dim == 3 && !it->supports_3d)) {
+  if (fill == nullptr) {
     throw std::invalid_argument("generator '" + params.kind + "' does not exist in " +
                                 std::to_string(Dim) + "D");
   }
@@ -278,17 +311,7 @@ LabeledSet<Dim> make_synthetic(const SyntheticParams& params) {
   set.truth.labels = draw_labels(params, draw.rng);
   set.corr.source.resize(Dim, params.n);
   set.corr.target.resize(Dim, params.n);
-  if (params.kind == "repetitive") {
-    fill_repetitive(params, draw, T, set);
-  } else if constexpr (Dim == 2) {
-    if (params.kind == "bev-orb") {
-      fill_bev_orb(params, draw, T, set);
-    } else {
-      fill_cube_kinds(params, draw, T, set);
-    }
-  } else {
-    fill_cube_kinds(params, draw, T, set);
-  }
+  fill(params, draw, T, set);
   set.truth.T_target_source = T;
   if (params.score_separation >= 0.0) {
     std::mt19937_64 rng(derive_seed(params.seed, {0x53434f52u}));

@@ -40,7 +40,9 @@ struct GeneratorInfo {
 };
 
 /// The generator kinds, in a stable order.
-const std::vector<GeneratorInfo>& list_generators();
+std::vector<GeneratorInfo> list_generators();
+/// Throws UnknownName ("unknown kind 'x' (known: uniform, ...)").
+const GeneratorInfo& find_generator(const std::string& kind);
 
 /// Draws a set of `params.kind`. Common to every kind: the rotation is uniform on SO(Dim), each
 /// translation component uniform in [-max_translation, max_translation], round(n * ratio)

@@ -10,18 +10,14 @@ void register_clique_solvers();
 void register_ransac_solver();
 void register_mac_solver();
 void register_jcbb_solver();
-void register_pcl_solvers();
-void register_open3d_solvers();
 
-void register_builtin_solvers() {
+void register_solvers() {
   static std::once_flag once;
   std::call_once(once, [] {
     register_clique_solvers();
     register_ransac_solver();
     register_mac_solver();
     register_jcbb_solver();
-    register_pcl_solvers();
-    register_open3d_solvers();
   });
 }
 

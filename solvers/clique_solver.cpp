@@ -2,10 +2,10 @@
 // least-squares rigid fit on C* -> accept when |C*| reaches the threshold. One solver per clique
 // algorithm of max_clique.hpp (`clique-<algorithm>`), and `clique` for the default one.
 #include "core/rigid_fit.hpp"
-#include "solvers/graph_stage.hpp"
-#include "solvers/max_clique.hpp"
+#include "solvers/detail/graph_stage.hpp"
+#include "cliques/max_clique.hpp"
 #include "solvers/registry.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

@@ -32,10 +32,10 @@
 #include <numeric>
 
 #include "core/chi2.hpp"
-#include "core/compatibility_graph.hpp"
+#include "graph/compatibility_graph.hpp"
 #include "core/rigid_fit.hpp"
 #include "solvers/registry.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

@@ -7,11 +7,11 @@
 #include <algorithm>
 
 #include "core/rigid_fit.hpp"
-#include "solvers/consensus.hpp"
-#include "solvers/graph_stage.hpp"
-#include "solvers/max_clique.hpp"
+#include "solvers/detail/consensus.hpp"
+#include "solvers/detail/graph_stage.hpp"
+#include "cliques/max_clique.hpp"
 #include "solvers/registry.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

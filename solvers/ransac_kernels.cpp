@@ -1,11 +1,11 @@
 // Scoring kernels of the RANSAC family. Blocks of kBlock points are scored with straight-line
 // code the compiler vectorises (AVX-512, AVX2 or baseline, picked at load time); the early exit
 // is checked between blocks. Built with -ffp-contract=off so that every path rounds alike.
-#include "solvers/ransac_kernels.hpp"
+#include "solvers/detail/ransac_kernels.hpp"
 
 #include <algorithm>
 
-#include "core/multiversion.hpp"
+#include "core/detail/multiversion.hpp"
 
 namespace verifybench::detail {
 

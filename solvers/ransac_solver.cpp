@@ -21,10 +21,10 @@
 
 #include "core/random.hpp"
 #include "core/rigid_fit.hpp"
-#include "solvers/consensus.hpp"
-#include "solvers/ransac_kernels.hpp"
+#include "solvers/detail/consensus.hpp"
+#include "solvers/detail/ransac_kernels.hpp"
 #include "solvers/registry.hpp"
-#include "solvers/timer.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/registry.hpp"
 #include "solvers/solver.hpp"
 
 namespace verifybench {
@@ -16,10 +17,7 @@ struct SolverInfo {
   std::function<std::unique_ptr<Solver>()> make;
 };
 
-class UnknownSolver : public std::invalid_argument {
- public:
-  using std::invalid_argument::invalid_argument;
-};
+using UnknownSolver = UnknownName;
 
 class SolverRegistry {
  public:
@@ -30,9 +28,15 @@ class SolverRegistry {
   static bool contains(const std::string& name);
   /// Registered solvers, sorted by name.
   static std::vector<SolverInfo> list();
+  /// Throws UnknownSolver unless every name is registered.
+  static void check(const std::vector<std::string>& names);
+
+ private:
+  static Registry<SolverInfo>& table();
 };
 
-/// Registers the built-in solvers once (explicit, so that no linker drops a static registrant).
-void register_builtin_solvers();
+/// Registers this folder's solvers once (explicit, so that no linker drops a static registrant);
+/// harness/builtin.hpp registers every solver of the build.
+void register_solvers();
 
 }  // namespace verifybench

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <set>
 
-#include "generators/dimacs.hpp"
-#include "solvers/max_clique.hpp"
+#include "datasets/dimacs.hpp"
+#include "cliques/max_clique.hpp"
 
 namespace verifybench {
 namespace {

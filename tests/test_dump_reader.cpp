@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/compatibility_graph.hpp"
-#include "generators/dump_reader.hpp"
-#include "solvers/max_clique.hpp"
+#include "graph/compatibility_graph.hpp"
+#include "datasets/text_dump.hpp"
+#include "cliques/max_clique.hpp"
 
 namespace verifybench {
 namespace {

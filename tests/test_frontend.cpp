@@ -7,6 +7,7 @@
 #include <fstream>
 #include <random>
 
+#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "frontend/bev.hpp"
 #include "frontend/bshot.hpp"

@@ -1,7 +1,7 @@
 // The correspondence graph against its definition, Eq. (1), evaluated pair by pair.
 #include <gtest/gtest.h>
 
-#include "core/compatibility_graph.hpp"
+#include "graph/compatibility_graph.hpp"
 #include "generators/synthetic.hpp"
 
 namespace verifybench {

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <random>
 
+#include "harness/builtin.hpp"
 #include "core/chi2.hpp"
 #include "core/metrics.hpp"
 #include "core/rigid_fit.hpp"

@@ -5,8 +5,8 @@
 #include <numeric>
 #include <set>
 
-#include "solvers/bbmc.hpp"
-#include "solvers/max_clique.hpp"
+#include "cliques/detail/bbmc.hpp"
+#include "cliques/max_clique.hpp"
 #include "test_util.hpp"
 
 namespace verifybench {

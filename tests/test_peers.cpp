@@ -3,9 +3,10 @@
 // 2D sets go through the z = 0 embedding, whose reflections are refused.
 #include <gtest/gtest.h>
 
+#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
-#include "solvers/embed.hpp"
+#include "peers/detail/embed.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {

@@ -6,10 +6,11 @@
 #include <cmath>
 #include <random>
 
+#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "core/rigid_fit.hpp"
 #include "generators/synthetic.hpp"
-#include "solvers/ransac_kernels.hpp"
+#include "solvers/detail/ransac_kernels.hpp"
 #include "solvers/registry.hpp"
 #include "test_util.hpp"
 

@@ -4,9 +4,10 @@
 #include <limits>
 #include <tuple>
 
+#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
-#include "solvers/max_clique.hpp"
+#include "cliques/max_clique.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {

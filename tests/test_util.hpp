@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "core/bitgraph.hpp"
+#include "graph/bitgraph.hpp"
 #include "core/correspondences.hpp"
 
 namespace verifybench::test {

@@ -1,0 +1,403 @@
+// Core decomposition, the greedy lower bound and the exact clique algorithms of max_clique.hpp.
+#include <algorithm>
+#include <atomic>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "core/random.hpp"
+#include "core/registry.hpp"
+#include "cliques/detail/bbmc.hpp"
+#include "cliques/max_clique.hpp"
+
+namespace verifybench {
+
+using detail::BranchAndBound;
+using detail::finish;
+using detail::for_each_bit;
+using detail::kBits;
+using detail::make_budget;
+using detail::SearchBudget;
+using detail::Word;
+
+std::vector<int> greedy_clique(const BitGraph& g, const CoreDecomposition& cd) {
+  bool stopped = false;
+  return detail::greedy_clique(g, cd, detail::kNoDeadline, stopped);
+}
+
+std::vector<int> detail::greedy_clique(const BitGraph& g, const CoreDecomposition& cd,
+                                       SteadyClock::time_point deadline, bool& stopped) {
+  const int W = g.words();
+  std::vector<int> best, clique;
+  std::vector<Word> cand(static_cast<std::size_t>(W));
+  for (auto it = cd.order.rbegin(); it != cd.order.rend(); ++it) {
+    const int v = *it;
+    if (cd.core[v] + 1 <= static_cast<int>(best.size())) continue;
+    clique.assign(1, v);
+    std::copy(g.row(v), g.row(v) + W, cand.begin());
+    for (;;) {
+      int pick = -1;
+      for_each_bit(cand.data(), W, [&](int u) {
+        if (pick < 0 || cd.core[u] > cd.core[pick]) pick = u;
+      });
+      if (pick < 0) break;
+      clique.push_back(pick);
+      const Word* row = g.row(pick);
+      for (int w = 0; w < W; ++w) cand[w] &= row[w];
+      if ((clique.size() & 63) == 0 && SteadyClock::now() >= deadline) {
+        stopped = true;  // a partial greedy clique is still a clique
+        break;
+      }
+    }
+    if (clique.size() > best.size()) best = clique;
+    if (stopped || SteadyClock::now() >= deadline) {
+      stopped = true;
+      break;
+    }
+  }
+  return best;
+}
+
+CoreDecomposition core_decomposition(const BitGraph& g) {
+  return detail::core_decomposition(g, detail::kNoDeadline);
+}
+
+CoreDecomposition detail::core_decomposition(const BitGraph& g, SteadyClock::time_point deadline) {
+  const int n = g.size();
+  CoreDecomposition cd;
+  std::vector<int> deg(static_cast<std::size_t>(n)), pos(static_cast<std::size_t>(n)),
+      vert(static_cast<std::size_t>(n));
+  int max_deg = 0;
+  for (int v = 0; v < n; ++v) {
+    if ((v & 1023) == 1023) throw_if_past(deadline);
+    max_deg = std::max(max_deg, deg[v] = g.degree(v));
+  }
+  std::vector<int> bin(static_cast<std::size_t>(max_deg) + 1, 0);
+  for (int v = 0; v < n; ++v) ++bin[deg[v]];
+  for (int d = 0, start = 0; d <= max_deg; ++d) {
+    const int c = bin[d];
+    bin[d] = start;
+    start += c;
+  }
+  for (int v = 0; v < n; ++v) {
+    pos[v] = bin[deg[v]]++;
+    vert[pos[v]] = v;
+  }
+  for (int d = max_deg; d > 0; --d) bin[d] = bin[d - 1];
+  bin[0] = 0;
+  // Only neighbours not removed yet can lose degree: scan row(v) & alive, which halves the visits.
+  const int W = g.words();
+  std::vector<Word> alive(static_cast<std::size_t>(W), 0);
+  for (int v = 0; v < n; ++v) alive[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+  for (int i = 0; i < n; ++i) {
+    if ((i & 255) == 255) throw_if_past(deadline);
+    const int v = vert[i];
+    alive[static_cast<std::size_t>(v / kBits)] &= ~(Word{1} << (v % kBits));
+    const Word* row = g.row(v);
+    for (int w = 0; w < W; ++w) {
+      for (Word x = row[w] & alive[static_cast<std::size_t>(w)]; x; x &= x - 1) {
+        const int u = w * kBits + detail::lowest_bit(x);
+        if (deg[u] <= deg[v]) continue;
+        // Move u to the front of its degree bucket, then shrink the bucket (Batagelj-Zaversnik).
+        const int du = deg[u], pu = pos[u], pf = bin[du], first = vert[pf];
+        if (u != first) {
+          std::swap(vert[pu], vert[pf]);
+          pos[u] = pf;
+          pos[first] = pu;
+        }
+        ++bin[du];
+        --deg[u];
+      }
+    }
+  }
+  cd.core = std::move(deg);
+  cd.order = std::move(vert);
+  return cd;
+}
+
+namespace {
+
+// The interleaved local search (bbmcx-ls): 100 n visits up front (a few hundred steps), then a
+// tenth of the colouring's words: 5-15% more time where it finds nothing better (johnson16-2-4,
+// p_hat1000-1); 0.05 to 0.5 all prove brock400_4 in 5.5-11 s (BENCHMARK.md, section 5c).
+constexpr long long kLocalInitialVisitsPerVertex = 100;
+constexpr double kLocalShare = 0.1;
+constexpr std::uint64_t kLocalSearchStream = 0x15;
+
+int max_core(const CoreDecomposition& cd) {
+  return cd.core.empty() ? -1 : *std::max_element(cd.core.begin(), cd.core.end());
+}
+
+/// BBMC on the subgraph induced by `vertices` (in that order, which is the initial colouring
+/// order); returns a clique larger than `incumbent` in original ids, or an empty vector.
+/// With `local_search`, a DLS-MC search runs interleaved (BranchAndBound::interleave).
+std::vector<int> search_ordered(const BitGraph& g, const std::vector<int>& vertices, int incumbent,
+                                SearchBudget& budget, bool recolour = false, bool infra = false,
+                                const LocalSearchParams* local_search = nullptr,
+                                long long* local_steps = nullptr) {
+  const BitGraph sub = detail::permuted(g, vertices, budget.deadline);
+  BranchAndBound bb(sub, incumbent, budget, recolour, infra);
+  std::unique_ptr<LocalSearch> helper;
+  if (local_search) {
+    helper = std::make_unique<LocalSearch>(sub, *local_search);
+    bb.interleave(helper.get(), kLocalInitialVisitsPerVertex * sub.size(), kLocalShare);
+  }
+  bb.run();
+  if (helper && local_steps) *local_steps = helper->steps();
+  std::vector<int> found;
+  for (int k : bb.best()) found.push_back(vertices[static_cast<std::size_t>(k)]);
+  return found;
+}
+
+// bbmc / bbmcr / bbmcx: the whole graph in min-width order (highest core first), no pre-pruning.
+template <bool kRecolour, bool kInfra = false>
+CliqueSearchResult run_bbmc(const BitGraph& g, const CliqueSearchParams& p) {
+  SearchBudget budget = make_budget(p);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
+  const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
+  return finish(search_ordered(g, order, 0, budget, kRecolour, kInfra), true, budget,
+                max_core(cd) + 1);
+}
+
+// bbmcx-ls: bbmcx with DLS-MC interleaved; its stream derives from the seed, so a seed gives one
+// clique and one search tree.
+CliqueSearchResult run_bbmcx_ls(const BitGraph& g, const CliqueSearchParams& p) {
+  SearchBudget budget = make_budget(p);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
+  const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
+  LocalSearchParams ls;
+  ls.target = max_core(cd) + 1;
+  ls.seed = derive_seed(p.seed, {kLocalSearchStream});
+  long long steps = 0;
+  CliqueSearchResult r =
+      finish(search_ordered(g, order, 0, budget, true, true, &ls, &steps), true, budget, ls.target);
+  r.local_search_steps = steps;
+  return r;
+}
+
+// bbmc-kcore: greedy lower bound, drop vertices whose core number cannot beat it, BBMC on the rest.
+CliqueSearchResult run_bbmc_kcore(const BitGraph& g, const CliqueSearchParams& p) {
+  SearchBudget budget = make_budget(p);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
+  const int upper = max_core(cd) + 1;
+  std::vector<int> best = detail::greedy_clique(g, cd, budget.deadline, budget.stopped);
+  if (budget.stopped) return finish(std::move(best), true, budget, upper);
+  const int incumbent = static_cast<int>(best.size());
+  if (incumbent < upper) {
+    std::vector<int> kept;  // a clique larger than the incumbent lies in the incumbent-core
+    for (auto it = cd.order.rbegin(); it != cd.order.rend(); ++it) {
+      if (cd.core[static_cast<std::size_t>(*it)] >= incumbent) kept.push_back(*it);
+    }
+    std::vector<int> found = search_ordered(g, kept, incumbent, budget);
+    if (!found.empty()) best = std::move(found);
+  }
+  return finish(std::move(best), true, budget, upper);
+}
+
+// bbmc-dec: every maximum clique has a first vertex v in degeneracy order, and its other vertices
+// are later neighbours of v: at most degeneracy of them. Solving each such neighbourhood as a small
+// compact BBMC problem, highest core first, is what PMC does (with a weaker bound inside).
+class Decomposition {
+ public:
+  Decomposition(const BitGraph& g, SteadyClock::time_point deadline)
+      : cd_(detail::core_decomposition(g, deadline)),
+        order_(cd_.order.rbegin(), cd_.order.rend()),
+        // Relabel in min-width order (0 = removed last): v's later neighbours are the smaller ids.
+        h_(detail::permuted(g, order_, deadline)) {}
+
+  const CoreDecomposition& cores() const { return cd_; }
+  int size() const { return h_.size(); }
+
+  /// A clique through v larger than `size` whose other vertices are v's later neighbours, in
+  /// original ids (the maximum such clique, the first BBMC meets), or empty when there is none.
+  std::vector<int> solve(int v, int size, SearchBudget& budget, std::vector<Word>& mask,
+                         std::vector<int>& members) const {
+    if (core(v) + 1 <= size) return {};  // v's later degree is at most its core number
+    members.clear();
+    const Word* row = h_.row(v);
+    for (int w = 0; w <= v / kBits; ++w) {
+      for (Word x = row[w]; x; x &= x - 1) {
+        const int u = w * kBits + detail::lowest_bit(x);
+        if (u >= v) break;
+        if (core(u) >= size) members.push_back(u);
+      }
+    }
+    if (static_cast<int>(members.size()) + 1 <= size) return {};
+    const BitGraph sub = BranchAndBound::induced(h_, members, mask);
+    BranchAndBound bb(sub, size - 1, budget);
+    bb.run();
+    if (bb.best().empty()) return {};
+    std::vector<int> clique{order_[static_cast<std::size_t>(v)]};
+    for (int k : bb.best())
+      clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
+    return clique;
+  }
+
+ private:
+  int core(int relabelled) const {
+    return cd_.core[static_cast<std::size_t>(order_[static_cast<std::size_t>(relabelled)])];
+  }
+  CoreDecomposition cd_;
+  std::vector<int> order_;
+  BitGraph h_;
+};
+
+// Parallel over vertices with a shared incumbent size, then a canonical answer so that the clique
+// does not depend on the thread count: the first vertex (in min-width order) through which a
+// maximum clique runs, and the first maximum clique BBMC meets there with incumbent omega - 1.
+// Phase 1 records, per vertex, the size it proved no larger clique through it exceeds, so the
+// canonical pass re-solves only vertices that phase 1 could not rule out (with one thread: one).
+CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) {
+  const SteadyClock::time_point deadline = deadline_after(p.time_limit_s);
+  const Decomposition dec(g, deadline);
+  const int n = dec.size();
+  const int upper = max_core(dec.cores()) + 1;
+  SearchBudget greedy_budget;
+  std::vector<int> best = detail::greedy_clique(g, dec.cores(), deadline, greedy_budget.stopped);
+  if (greedy_budget.stopped) return finish(std::move(best), true, greedy_budget, upper);
+  const int threads = std::max(
+      1, p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency()));
+
+  std::atomic<int> next{0}, best_size{static_cast<int>(best.size())};
+  std::atomic<bool> stop{false};
+  std::mutex lock;
+  int first = n;  // smallest vertex through which phase 1 met a clique of the current best size
+  std::vector<int> proven(static_cast<std::size_t>(n), std::numeric_limits<int>::max());
+  std::vector<SearchBudget> budgets(static_cast<std::size_t>(threads), make_budget(p));
+  auto worker = [&](SearchBudget& budget) {
+    std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
+    std::vector<int> members;
+    for (int v; !stop && (v = next++) < n && best_size.load() < upper;) {
+      const int size = best_size.load();
+      std::vector<int> found = dec.solve(v, size, budget, mask, members);
+      if (budget.stopped) {
+        stop = true;
+        return;
+      }
+      proven[static_cast<std::size_t>(v)] = found.empty() ? size : static_cast<int>(found.size());
+      if (found.empty()) continue;
+      std::lock_guard<std::mutex> guard(lock);
+      if (found.size() > best.size() || (found.size() == best.size() && v < first)) {
+        first = v;
+        best = std::move(found);
+        best_size = static_cast<int>(best.size());
+      }
+    }
+  };
+  if (threads == 1) {
+    worker(budgets[0]);
+  } else {
+    std::vector<std::thread> pool;
+    for (auto& b : budgets) pool.emplace_back(worker, std::ref(b));
+    for (auto& t : pool) t.join();
+  }
+  SearchBudget total = budgets[0];
+  for (std::size_t t = 1; t < budgets.size(); ++t) total.nodes += budgets[t].nodes;
+  total.stopped = stop;
+  if (!stop && first < n) {
+    const int omega = static_cast<int>(best.size());
+    std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
+    std::vector<int> members;
+    SearchBudget canonical = make_budget(p);
+    for (int v = 0; v <= first; ++v) {
+      if (proven[static_cast<std::size_t>(v)] < omega) continue;  // no omega-clique through v
+      std::vector<int> found = dec.solve(v, omega - 1, canonical, mask, members);
+      if (!found.empty()) {
+        best = std::move(found);
+        break;
+      }
+    }
+    total.nodes += canonical.nodes;
+    total.stopped = canonical.stopped;
+  }
+  return finish(std::move(best), true, total, upper);
+}
+
+CliqueSearchResult run_greedy(const BitGraph& g, const CliqueSearchParams& p) {
+  SearchBudget budget = make_budget(p);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
+  std::vector<int> clique = detail::greedy_clique(g, cd, budget.deadline, budget.stopped);
+  return finish(std::move(clique), false, budget, max_core(cd) + 1);
+}
+
+Registry<CliqueAlgorithmInfo>& algorithms() {
+  static Registry<CliqueAlgorithmInfo> table("clique algorithm");
+  return table;
+}
+
+}  // namespace
+
+void CliqueAlgorithms::add(CliqueAlgorithmInfo info) {
+  // A limit that passes during set-up (core numbers, orders, relabelling) stops the search before
+  // it starts: nothing found yet, status time_limit.
+  info.run = [run = std::move(info.run)](const BitGraph& g, const CliqueSearchParams& p) {
+    try {
+      return run(g, p);
+    } catch (const detail::OutOfTime&) {
+      CliqueSearchResult r;
+      r.stopped = true;
+      r.upper_bound = g.size();
+      return r;
+    }
+  };
+  algorithms().add(std::move(info));
+}
+
+const CliqueAlgorithmInfo& CliqueAlgorithms::get(const std::string& name) {
+  return algorithms().get(name);
+}
+
+std::vector<CliqueAlgorithmInfo> CliqueAlgorithms::list() { return algorithms().list(); }
+
+void register_cliquer();  // cliquer.cpp
+void register_igraph();   // igraph.cpp
+CliqueSearchResult run_doll(const BitGraph& g, const CliqueSearchParams& p);  // doll.cpp
+
+void register_clique_algorithms() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    CliqueAlgorithms::add({"bbmc",
+                           "BBMC: bitset branch and bound, greedy colouring bound, min-width order",
+                           true, run_bbmc<false>});
+    CliqueAlgorithms::add({"bbmcr",
+                           "BBMCR: BBMC with re-colouring (MCS Re-NUMBER) of branching candidates",
+                           true, run_bbmc<true>});
+    CliqueAlgorithms::add({"bbmcx",
+                           "BBMCX: BBMCR plus the infra-chromatic bound (absorbs a vertex whose "
+                           "one neighbour in a class sees none of its neighbours in another)",
+                           true, run_bbmc<true, true>});
+    CliqueAlgorithms::add({"bbmcx-ls",
+                           "BBMCX with a DLS-MC local search interleaved for the lower bound", true,
+                           run_bbmcx_ls});
+    CliqueAlgorithms::add(
+        {"bbmc-kcore",
+         "BBMC after a greedy lower bound and k-core pruning (TEASER++/PMC-style pre-pruning)",
+         true, run_bbmc_kcore});
+    CliqueAlgorithms::add(
+        {"bbmc-dec",
+         "BBMC on each vertex's later neighbours in degeneracy order (PMC-style decomposition)",
+         true, run_bbmc_dec});
+    CliqueAlgorithms::add({"doll",
+                           "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",
+                           true, run_doll});
+    CliqueAlgorithms::add({"greedy",
+                           "greedy clique by core number: a heuristic, no optimality proof", false,
+                           run_greedy});
+#ifdef VERIFYBENCH_HAVE_CLIQUER
+    register_cliquer();
+#endif
+#ifdef VERIFYBENCH_HAVE_IGRAPH
+    register_igraph();
+#endif
+  });
+}
+
+CliqueSearchResult max_clique(const BitGraph& g, const CliqueSearchParams& params) {
+  register_clique_algorithms();
+  return CliqueAlgorithms::get(kDefaultCliqueAlgorithm).run(g, params);
+}
+
+}  // namespace verifybench

@@ -1,0 +1,36 @@
+#pragma once
+// verifybench dump format, version 1: one folder per correspondence set.
+//   DIR/dump.json    {"format": "verifybench-dump", "version": 1, "dim": 2|3, "count": n,
+//                     "columns": ["xs","ys",("zs"),"xt","yt",("zt"),("score"),("label")],
+//                     "T_target_source": row-major (dim+1)^2 | null,
+//                     "label_threshold": metres | null, "provenance": {...}}
+//   DIR/matches.tsv  one line per correspondence, tab-separated, in the order of "columns";
+//                    a first line "# " + the column names. score: higher = better (e.g. minus the
+//                    Hamming distance); label: 1 = inlier (ground-truth residual <
+//                    label_threshold).
+// From Python: json.load(open("DIR/dump.json")); numpy.loadtxt("DIR/matches.tsv").
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "datasets/text_dump.hpp"
+
+namespace verifybench {
+
+struct Dump {
+  AnySet set;                             ///< points, optional scores, truth
+  std::optional<double> label_threshold;  ///< how labels were derived, when they were
+  nlohmann::json provenance = nlohmann::json::object();  ///< inputs, parameters, counts, timings
+};
+
+constexpr int kDumpFormatVersion = 1;
+
+/// Writes DIR atomically: into a sibling temporary folder, renamed to DIR at the end. Refuses an
+/// existing DIR (nothing is overwritten). Throws InputError (bad set) or std::runtime_error (I/O).
+void write_dump(const std::string& dir, const Dump& dump);
+
+/// Reads a folder in this format (dump.json present) or in the plain-text layout of
+/// read_text_dump (corr.txt). Throws InputError naming file, line, field and value.
+Dump read_dump(const std::string& dir);
+
+}  // namespace verifybench

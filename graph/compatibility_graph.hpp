@@ -1,0 +1,23 @@
+#pragma once
+// The correspondence graph of CliReg: one vertex per correspondence, an edge {i, j} when
+//   | ||m_i - m_j|| - ||q_i - q_j|| | < eps                                   (paper, Eq. 1)
+// i.e. the pair keeps its length under the motion, as any two inliers of one rigid motion do.
+#include <cstddef>
+
+#include "graph/bitgraph.hpp"
+#include "core/correspondences.hpp"
+
+namespace verifybench {
+
+struct GraphParams {
+  double eps = 0.1;                              ///< pair length tolerance [m], > 0
+  std::size_t max_bytes = std::size_t{4} << 30;  ///< refuse graphs whose rows exceed this
+  int threads = 1;  ///< worker threads (0 = all cores); same graph for any count
+};
+
+/// Throws std::invalid_argument for eps <= 0 and std::length_error (with the sizes) when the
+/// adjacency rows would exceed params.max_bytes.
+template <int Dim>
+BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const GraphParams& params);
+
+}  // namespace verifybench

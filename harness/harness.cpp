@@ -1,0 +1,154 @@
+#include "harness/harness.hpp"
+
+#include <cstring>
+
+#include "core/metrics.hpp"
+#include "core/random.hpp"
+#include "generators/synthetic.hpp"
+#include "solvers/registry.hpp"
+#include "core/timer.hpp"
+
+namespace verifybench {
+
+template <int Dim>
+TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
+                     const LabeledSet<Dim>& set, const SolverParams& params,
+                     const SuccessCriteria& criteria) {
+  StopWatch clock;
+  const Result<Dim> result = solver.solve(set.corr, params);
+  TrialRecord r;
+  r.time_ms = clock.ms();
+  r.solver = solver_name;
+  r.dim = Dim;
+  r.n = static_cast<int>(set.corr.size());
+  r.solver_seed = params.seed;
+  r.status = to_string(result.status);
+  r.message = result.message;
+  r.accepted = result.accepted;
+  r.inliers = static_cast<int>(result.inliers.size());
+  r.graph_ms = result.times.graph_ms;
+  r.search_ms = result.times.search_ms;
+  r.fit_ms = result.times.fit_ms;
+  r.branch_nodes = result.counters.branch_nodes;
+  r.iterations = result.counters.iterations;
+  r.graph_edges = result.counters.graph_edges;
+  r.local_optimisations = result.counters.local_optimisations;
+  const Eigen::Matrix<double, Dim + 1, Dim + 1> M = result.T_target_source.matrix();
+  for (int i = 0; i <= Dim; ++i) {
+    for (int j = 0; j <= Dim; ++j) r.T_target_source.push_back(M(i, j));
+  }
+  if (result.status == Status::error) return r;
+
+  if (!set.truth.labels.empty()) {
+    const InlierScores s = inlier_scores(result.inliers, set.truth.labels);
+    r.inlier_precision = s.precision;
+    r.inlier_recall = s.recall;
+    r.inlier_f1 = s.f1;
+    r.true_inliers =
+        static_cast<int>(std::count(set.truth.labels.begin(), set.truth.labels.end(), 1));
+  }
+  if (set.truth.T_target_source) {
+    r.rotation_error_deg = rotation_error_deg(result.T_target_source, *set.truth.T_target_source);
+    r.translation_error = translation_error(result.T_target_source, *set.truth.T_target_source);
+    r.success = (!criteria.requires_accepted || result.accepted) &&
+                r.rotation_error_deg < criteria.max_rotation_error_deg &&
+                r.translation_error < criteria.max_translation_error;
+  }
+  return r;
+}
+
+namespace {
+
+std::uint64_t bits_of(double v) {
+  std::uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+
+template <int Dim>
+void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecord>& rows) {
+  std::vector<std::unique_ptr<Solver>> solvers;
+  for (const auto& name : config.solvers) solvers.push_back(SolverRegistry::create(name));
+  for (int t = 0; t < config.trials; ++t) {
+    SyntheticParams sp = config.shape;
+    sp.n = config.n;
+    sp.outlier_ratio = ratio;
+    sp.noise = config.noise;
+    sp.extent = config.extent;
+    sp.max_translation = config.extent / 2;
+    sp.seed = derive_seed(config.seed, {std::uint64_t(Dim), std::uint64_t(config.n), bits_of(ratio),
+                                        std::uint64_t(t)});
+    LabeledSet<Dim> set = make_synthetic<Dim>(sp);
+    if (config.prior_sigma_rot > 0.0 && config.prior_sigma_trans > 0.0) {
+      add_pose_prior(set, config.prior_sigma_rot, config.prior_sigma_trans, sp.seed);
+    }
+    SolverParams params = config.params;
+    params.seed = derive_seed(sp.seed, {1});
+    for (std::size_t s = 0; s < solvers.size(); ++s) {
+      TrialRecord r = evaluate(*solvers[s], config.solvers[s], set, params, config.criteria);
+      r.dataset = "synthetic";
+      r.generator = sp.kind;
+      r.outlier_ratio = ratio;
+      r.noise = config.noise;
+      r.trial = t;
+      r.data_seed = sp.seed;
+      rows.push_back(std::move(r));
+      if (rows.back().status == "error") return;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress) {
+  std::vector<TrialRecord> rows;
+  for (int dim : config.dims) {
+    for (double ratio : config.outlier_ratios) {
+      std::vector<TrialRecord> point;
+      if (dim == 2)
+        sweep_point<2>(config, ratio, point);
+      else
+        sweep_point<3>(config, ratio, point);
+      if (progress) progress(point);
+      const bool failed = !point.empty() && point.back().status == "error";
+      rows.insert(rows.end(), point.begin(), point.end());
+      if (failed) return rows;
+    }
+  }
+  return rows;
+}
+
+template <int Dim>
+std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
+                                    const LabeledSet<Dim>& set, const std::string& dataset,
+                                    int trials, std::uint64_t seed, const SolverParams& params,
+                                    const SuccessCriteria& criteria) {
+  std::vector<TrialRecord> rows;
+  for (const auto& name : solvers) {
+    const auto solver = SolverRegistry::create(name);
+    for (int t = 0; t < trials; ++t) {
+      SolverParams p = params;
+      p.seed = derive_seed(seed, {std::uint64_t(t)});
+      TrialRecord r = evaluate(*solver, name, set, p, criteria);
+      r.dataset = dataset;
+      r.trial = t;
+      rows.push_back(std::move(r));
+    }
+  }
+  return rows;
+}
+
+template TrialRecord evaluate<2>(const Solver&, const std::string&, const LabeledSet<2>&,
+                                 const SolverParams&, const SuccessCriteria&);
+template TrialRecord evaluate<3>(const Solver&, const std::string&, const LabeledSet<3>&,
+                                 const SolverParams&, const SuccessCriteria&);
+template std::vector<TrialRecord> run_on_set<2>(const std::vector<std::string>&,
+                                                const LabeledSet<2>&, const std::string&, int,
+                                                std::uint64_t, const SolverParams&,
+                                                const SuccessCriteria&);
+template std::vector<TrialRecord> run_on_set<3>(const std::vector<std::string>&,
+                                                const LabeledSet<3>&, const std::string&, int,
+                                                std::uint64_t, const SolverParams&,
+                                                const SuccessCriteria&);
+
+}  // namespace verifybench
