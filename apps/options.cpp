@@ -64,6 +64,10 @@ void Options::parse(const std::vector<std::string>& args) {
 std::string Options::help() const {
   std::ostringstream out;
   for (const auto& name : order_) {
+    if (name[0] == '\n') {  // a group heading
+      out << name.substr(1) << ":\n";
+      continue;
+    }
     const Spec& s = specs_.at(name);
     std::string head = "  --" + name + (s.value_name.empty() ? "" : " " + s.value_name);
     out << head << std::string(head.size() < 30 ? 30 - head.size() : 1, ' ') << s.help;

@@ -17,6 +17,11 @@ class Options {
   Options& add(const std::string& name, const std::string& value_name, const std::string& fallback,
                const std::string& help);
 
+  /// Starts a titled group: the options added next are listed under it in --help.
+  Options& group(const std::string& title) {
+    order_.push_back("\n" + title);
+    return *this;
+  }
   /// Accepts arguments that are not options (e.g. input files), kept in positional().
   Options& allow_positional(const std::string& name) {
     positional_name_ = name;

@@ -66,7 +66,8 @@ std::uint64_t bits_of(double v) {
 }
 
 template <int Dim>
-void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecord>& rows) {
+void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecord>& rows,
+                 const TrialProgress& on_trial) {
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const auto& name : config.solvers) solvers.push_back(SolverRegistry::create(name));
   for (int t = 0; t < config.trials; ++t) {
@@ -95,20 +96,22 @@ void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecor
       rows.push_back(std::move(r));
       if (rows.back().status == "error") return;
     }
+    if (on_trial) on_trial();
   }
 }
 
 }  // namespace
 
-std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress) {
+std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress,
+                                   const TrialProgress& on_trial) {
   std::vector<TrialRecord> rows;
   for (int dim : config.dims) {
     for (double ratio : config.outlier_ratios) {
       std::vector<TrialRecord> point;
       if (dim == 2)
-        sweep_point<2>(config, ratio, point);
+        sweep_point<2>(config, ratio, point, on_trial);
       else
-        sweep_point<3>(config, ratio, point);
+        sweep_point<3>(config, ratio, point, on_trial);
       if (progress) progress(point);
       const bool failed = !point.empty() && point.back().status == "error";
       rows.insert(rows.end(), point.begin(), point.end());
@@ -122,7 +125,8 @@ template <int Dim>
 std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
                                     const LabeledSet<Dim>& set, const std::string& dataset,
                                     int trials, std::uint64_t seed, const SolverParams& params,
-                                    const SuccessCriteria& criteria) {
+                                    const SuccessCriteria& criteria,
+                                    const TrialProgress& on_trial) {
   std::vector<TrialRecord> rows;
   for (const auto& name : solvers) {
     const auto solver = SolverRegistry::create(name);
@@ -133,7 +137,44 @@ std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
       r.dataset = dataset;
       r.trial = t;
       rows.push_back(std::move(r));
+      if (on_trial) on_trial();
     }
+  }
+  return rows;
+}
+
+std::vector<CliqueRecord> run_clique_algorithms(const BitGraph& g, const std::string& graph_name,
+                                                std::optional<int> known_omega,
+                                                const std::vector<std::string>& algorithms,
+                                                const CliqueSearchParams& params) {
+  std::vector<CliqueRecord> rows;
+  for (const auto& name : algorithms) {
+    const auto& algorithm = CliqueAlgorithms::get(name);
+    CliqueRecord r;
+    r.graph = graph_name;
+    r.algorithm = name;
+    r.n = g.size();
+    r.edges = g.edge_count();
+    r.known_omega = known_omega;
+    try {
+      StopWatch clock;
+      const CliqueSearchResult res = algorithm.run(g, params);
+      r.time_ms = clock.ms();
+      r.status = res.stopped ? "time_limit" : res.optimal ? "ok" : "unproven";
+      r.omega = static_cast<int>(res.clique.size());
+      r.nodes = res.nodes;
+      r.upper_bound = res.upper_bound;
+      r.local_search_steps = res.local_search_steps;
+      for (int v : res.clique) r.clique.push_back(v + 1);
+      if (!g.is_clique(res.clique)) {
+        r.status = "error";
+        r.message = "the returned vertex set is not a clique";
+      }
+    } catch (const std::exception& e) {
+      r.status = "error";
+      r.message = e.what();
+    }
+    rows.push_back(std::move(r));
   }
   return rows;
 }
@@ -145,10 +186,10 @@ template TrialRecord evaluate<3>(const Solver&, const std::string&, const Labele
 template std::vector<TrialRecord> run_on_set<2>(const std::vector<std::string>&,
                                                 const LabeledSet<2>&, const std::string&, int,
                                                 std::uint64_t, const SolverParams&,
-                                                const SuccessCriteria&);
+                                                const SuccessCriteria&, const TrialProgress&);
 template std::vector<TrialRecord> run_on_set<3>(const std::vector<std::string>&,
                                                 const LabeledSet<3>&, const std::string&, int,
                                                 std::uint64_t, const SolverParams&,
-                                                const SuccessCriteria&);
+                                                const SuccessCriteria&, const TrialProgress&);
 
 }  // namespace verifybench

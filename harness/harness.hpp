@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
+#include "cliques/max_clique.hpp"
 #include "core/correspondences.hpp"
 #include "generators/synthetic.hpp"
 #include "reports/record.hpp"
@@ -38,12 +41,15 @@ struct SweepConfig {
 
 /// Called after each (dim, outlier ratio) point with the rows of that point.
 using SweepProgress = std::function<void(const std::vector<TrialRecord>& point_rows)>;
+/// Called after each set (every solver has run on it).
+using TrialProgress = std::function<void()>;
 
 /// Every solver sees the same drawn set in each trial. The set of trial t at (dim, n, ratio) is
 /// drawn from derive_seed(seed, {dim, n, ratio bits, t}), so it does not depend on which other
 /// points or solvers are in the sweep. Stops at the first row whose status is "error" (returning
 /// the rows so far, that one included).
-std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress = {});
+std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress = {},
+                                   const TrialProgress& on_trial = {});
 
 /// Runs each solver `trials` times on one set (a real dump); trial t uses solver seed
 /// derive_seed(seed, {t}).
@@ -51,6 +57,14 @@ template <int Dim>
 std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
                                     const LabeledSet<Dim>& set, const std::string& dataset,
                                     int trials, std::uint64_t seed, const SolverParams& params,
-                                    const SuccessCriteria& criteria);
+                                    const SuccessCriteria& criteria,
+                                    const TrialProgress& on_trial = {});
+
+/// Runs each named clique algorithm once on `g` (DIMACS mode): one row per algorithm, its clique
+/// checked (a non-clique is status "error"), 1-based ids, status ok | time_limit | unproven.
+std::vector<CliqueRecord> run_clique_algorithms(const BitGraph& g, const std::string& graph_name,
+                                                std::optional<int> known_omega,
+                                                const std::vector<std::string>& algorithms,
+                                                const CliqueSearchParams& params);
 
 }  // namespace verifybench

@@ -64,7 +64,7 @@ class Open3dRansac : public SolverBase<Open3dRansac> {
     reg::RANSACConvergenceCriteria criteria;
     if (!defaults_) {
       checkers.push_back(edges);
-      criteria = reg::RANSACConvergenceCriteria(params.ransac_iterations, params.ransac_confidence);
+      criteria = reg::RANSACConvergenceCriteria(params.ransac.iterations, params.ransac.confidence);
     }
     Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
     if (corr.size() >= 3) {

@@ -65,7 +65,7 @@ class PclRansac : public SolverBase<PclRansac> {
     rejector.setInputTarget(cloud<Dim>(corr.target));
     if (!defaults_) {
       rejector.setInlierThreshold(params.inlier_threshold);
-      rejector.setMaximumIterations(params.ransac_iterations);
+      rejector.setMaximumIterations(params.ransac.iterations);
       rejector.setRefineModel(true);
     }
     pcl::Correspondences kept;
@@ -109,7 +109,7 @@ class PclPrerejective : public SolverBase<PclPrerejective> {
     align.setCorrespondenceRandomness(1);
     align.setMaxCorrespondenceDistance(params.inlier_threshold);
     if (!defaults_) {
-      align.setMaximumIterations(params.ransac_iterations);
+      align.setMaximumIterations(params.ransac.iterations);
       align.setSimilarityThreshold(0.9f);
       // Our acceptance rule as its inlier fraction (PCL's default 0 admits any hypothesis).
       align.setInlierFraction(static_cast<float>(params.accept_threshold(Dim)) /

@@ -135,7 +135,7 @@ class Search {
       : corr_(corr),
         graph_(graph),
         var2_(2.0 * params.jcbb_point_sigma() * params.jcbb_point_sigma()),
-        gates_(params.jcbb_confidence),
+        gates_(params.jcbb.confidence),
         deadline_(deadline_after(params.time_limit_s)) {
     // Without a prior, centred copies: the moments then lose no digits to coordinates far from
     // the origin. With one, the original frames, where the prior and its Jacobians live.
@@ -247,7 +247,7 @@ class JcbbSolver : public SolverBase<JcbbSolver> {
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
     const double sigma = params.jcbb_point_sigma();
-    const double pair_eps = 2.0 * sigma * std::sqrt(chi2_quantile(params.jcbb_confidence, 1));
+    const double pair_eps = 2.0 * sigma * std::sqrt(chi2_quantile(params.jcbb.confidence, 1));
     StopWatch graph_clock;
     const BitGraph graph = build_compatibility_graph(
         corr, GraphParams{pair_eps, params.max_graph_bytes, params.threads});
@@ -278,6 +278,22 @@ void register_jcbb_solver() {
        "JCBB (Neira & Tardos 2001): largest jointly compatible set by chi-square tests, linearised "
        "at the pose prior when the set has one, else on the least-squares fit residual",
        [] { return std::make_unique<JcbbSolver>(); }});
+}
+
+const ParamFamily& jcbb_param_family() {
+  using K = ParamField::Kind;
+  ParamField sigma = bind(&SolverParams::jcbb, &JcbbParams::sigma,
+                          {"jcbb-sigma", "jcbb_sigma", "M",
+                           "per-axis point noise sigma [m] (0 = inlier threshold / 3)", K::real, 0,
+                           1e9, "a finite value >= 0 (0 = inlier_threshold / 3)", {}, {}, {}});
+  sigma.report = [](const SolverParams& p) { return p.jcbb_point_sigma(); };
+  static const ParamFamily family{
+      "jcbb",
+      "jcbb",
+      {sigma, bind(&SolverParams::jcbb, &JcbbParams::confidence,
+                   {"jcbb-confidence", "jcbb_confidence", "P", "level of the chi-square gates",
+                    K::real, 1e-9, 1 - 1e-12, "a value in (0, 1)", {}, {}, {}})}};
+  return family;
 }
 
 }  // namespace verifybench

@@ -31,8 +31,8 @@ class MacSolver : public SolverBase<MacSolver> {
         best_id(static_cast<std::size_t>(n), -1);
     std::vector<std::vector<int>> kept;
     MaximalCliqueParams mp;
-    mp.min_size = params.mac_min_clique;
-    mp.max_cliques = params.mac_max_cliques;
+    mp.min_size = params.mac.min_clique;
+    mp.max_cliques = params.mac.max_cliques;
     mp.time_limit_s = params.time_limit_s - result.times.graph_ms / 1000.0;
     long long nodes = 0;
     const bool complete = for_each_maximal_clique(
@@ -85,6 +85,21 @@ void register_mac_solver() {
        "MAC-style: maximal cliques (Bron-Kerbosch, node-guided selection) as hypotheses, "
        "best consensus wins, least-squares refit",
        [] { return std::make_unique<MacSolver>(); }});
+}
+
+const ParamFamily& mac_param_family() {
+  using K = ParamField::Kind;
+  static const ParamFamily family{
+      "mac",
+      "mac",
+      {bind(&SolverParams::mac, &MacParams::max_cliques,
+            {"mac-max-cliques", "mac_max_cliques", "K", "stop enumerating maximal cliques after K",
+             K::integer, 1, 4.6e18, "an integer >= 1", {}, {}, {}}),
+       bind(&SolverParams::mac, &MacParams::min_clique,
+            {"mac-min-clique", "mac_min_clique", "K",
+             "smallest maximal clique that makes a hypothesis", K::integer, 2, 1 << 30,
+             "an integer >= 2", {}, {}, {}})}};
+  return family;
 }
 
 }  // namespace verifybench

@@ -36,6 +36,7 @@ struct Variant {
   bool local_optimisation = false;
   double edge_similarity = 0.0;  ///< Open3D's CorrespondenceCheckerBasedOnEdgeLength; 0 = off
   bool prosac = false;
+  bool follow_adaptive_flag = false;  ///< `ransac`: adaptive when --ransac-adaptive is given
 };
 
 /// Counter-based generator: a SplitMix64 stream from one seed.
@@ -125,7 +126,7 @@ class Engine {
     const int threads = params_.threads == 0 ? std::max(1, omp_threads()) : params_.threads;
     const int batch = threads == 1 ? 1 : 256;
     std::vector<Hypothesis> hyps(static_cast<std::size_t>(batch));
-    long long needed = params_.ransac_iterations;
+    long long needed = params_.ransac.iterations;
     bool finished = true;
     StopWatch search_clock;
     long long t = 0;
@@ -316,10 +317,10 @@ class Engine {
       if (in_pool >= params_.accept_threshold(Dim)) w = std::max(w, double(in_pool) / pool);
     }
     const double miss = 1.0 - std::pow(std::min(w, 1.0), Dim);
-    const long long cap = params_.ransac_iterations;
+    const long long cap = params_.ransac.iterations;
     if (miss >= 1.0) return cap;  // w^s below double resolution: no evidence yet
     if (miss <= 0.0) return 0;
-    const double k = std::log(1.0 - params_.ransac_confidence) / std::log(miss);
+    const double k = std::log(1.0 - params_.ransac.confidence) / std::log(miss);
     return k >= double(cap) ? cap : static_cast<long long>(std::ceil(k));
   }
 
@@ -351,25 +352,27 @@ class Engine {
 
 class RansacSolver : public SolverBase<RansacSolver> {
  public:
-  explicit RansacSolver(Variant v, bool follow_adaptive_flag)
-      : v_(v), follow_flag_(follow_adaptive_flag) {}
+  explicit RansacSolver(Variant v) : v_(v) {}
 
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Variant v = v_;
-    if (follow_flag_) v.adaptive = params.ransac_adaptive;
+    if (v.follow_adaptive_flag) v.adaptive = params.ransac.adaptive;
     return Engine<Dim>(corr, params, v).run();
   }
 
  private:
   Variant v_;
-  bool follow_flag_;
 };
 
-void add(const char* name, const char* description, Variant v, bool follow_flag = false) {
-  SolverRegistry::add({name, description, [v, follow_flag] {
-                         return std::make_unique<RansacSolver>(v, follow_flag);
-                       }});
+void add(const char* name, const char* description, Variant v) {
+  SolverRegistry::add({name, description, [v] { return std::make_unique<RansacSolver>(v); }});
+}
+
+Variant variant(void (*set)(Variant&)) {
+  Variant v;
+  set(v);
+  return v;
 }
 
 }  // namespace
@@ -378,20 +381,45 @@ void register_ransac_solver() {
   add("ransac",
       "RANSAC: minimal samples (2 in 2D, 3 in 3D) without replacement, fixed 10,000 iterations "
       "(the paper's RANSAC-10K; --ransac-adaptive for the adaptive count), inlier count, seeded",
-      Variant{}, true);
+      variant([](Variant& v) { v.follow_adaptive_flag = true; }));
   add("ransac-adaptive",
       "RANSAC with the adaptive count k = log(1-p)/log(1-w^s), capped at --ransac-iterations",
-      Variant{true, false, false, 0.0, false});
+      variant([](Variant& v) { v.adaptive = true; }));
   add("msac", "MSAC: adaptive RANSAC scored by the truncated quadratic sum min(r^2, t^2)",
-      Variant{true, true, false, 0.0, false});
+      variant([](Variant& v) { v.adaptive = v.msac = true; }));
+  const auto lo = [](Variant& v) {
+    v.adaptive = v.msac = v.local_optimisation = true;
+    v.edge_similarity = 0.9;
+  };
   add("lo-ransac",
       "LO-RANSAC: adaptive MSAC, local optimisation (iterated least squares + 10 inner samples) "
       "on each new best, Open3D's 0.9 edge-length pre-check of each sample",
-      Variant{true, true, true, 0.9, false});
+      variant(lo));
   add("prosac",
       "PROSAC: lo-ransac with samples drawn in descending match score (uniform when the set "
       "carries no scores)",
-      Variant{true, true, true, 0.9, true});
+      variant([](Variant& v) {
+        v.adaptive = v.msac = v.local_optimisation = v.prosac = true;
+        v.edge_similarity = 0.9;
+      }));
+}
+
+const ParamFamily& ransac_param_family() {
+  using K = ParamField::Kind;
+  static const ParamFamily family{
+      "ransac",
+      "RANSAC family (ransac, ransac-adaptive, msac, lo-ransac, prosac, pcl-*, open3d-*)",
+      {bind(&SolverParams::ransac, &RansacParams::iterations,
+            {"ransac-iterations", "ransac_iterations", "K",
+             "fixed iteration count, or the cap of the adaptive count", K::integer, 1, 2e9,
+             "an integer >= 1", {}, {}, {}}),
+       bind(&SolverParams::ransac, &RansacParams::adaptive,
+            {"ransac-adaptive", "ransac_adaptive", "",
+             "`ransac`: adaptive count k = log(1-p)/log(1-w^s)", K::flag, 0, 1, "", {}, {}, {}}),
+       bind(&SolverParams::ransac, &RansacParams::confidence,
+            {"ransac-confidence", "ransac_confidence", "P", "p of the adaptive count", K::real,
+             1e-9, 1 - 1e-12, "a value in (0, 1)", {}, {}, {}})}};
+  return family;
 }
 
 }  // namespace verifybench

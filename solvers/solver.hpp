@@ -6,35 +6,9 @@
 #include <vector>
 
 #include "core/correspondences.hpp"
+#include "solvers/params.hpp"
 
 namespace verifybench {
-
-struct SolverParams {
-  double eps = 0.1;  ///< pair length tolerance of the correspondence graph, Eq. (1) [m]
-  double inlier_threshold =
-      0.1;              ///< residual ||T m - q|| under which a match is a consensus inlier [m]
-  int min_inliers = 0;  ///< accept when |inliers| >= this; 0 = paper default (5 in 3D, 10 in 2D)
-  double time_limit_s = 60.0;  ///< wall-clock limit of the search; best-so-far is returned past it
-  std::uint64_t seed = 1;      ///< seed of every random draw a solver makes
-  int ransac_iterations = 10000;     ///< RANSAC: fixed count, or the cap of the adaptive count
-  bool ransac_adaptive = false;      ///< RANSAC: stop at k = log(1-p) / log(1-w^s)
-  double ransac_confidence = 0.999;  ///< RANSAC: p of the adaptive count, in (0, 1)
-  std::size_t max_graph_bytes = std::size_t{4} << 30;  ///< refuse larger correspondence graphs
-  int threads =
-      1;  ///< worker threads for graph construction (0 = all cores); results do not depend on it
-  long long mac_max_cliques = 1000000;  ///< mac: stop enumerating maximal cliques after this many
-  int mac_min_clique = 3;               ///< mac: smallest maximal clique that makes a hypothesis
-  double jcbb_sigma = 0.0;  ///< jcbb: per-axis point noise sigma [m]; 0 = inlier_threshold / 3
-  double jcbb_confidence = 0.95;  ///< jcbb: level of the chi-square gates, in (0, 1)
-
-  /// Throws std::invalid_argument naming the field and the bad value.
-  void validate() const;
-  /// min_inliers with the paper's per-dimension default applied.
-  int accept_threshold(int dim) const {
-    return min_inliers > 0 ? min_inliers : (dim == 2 ? 10 : 5);
-  }
-  double jcbb_point_sigma() const { return jcbb_sigma > 0.0 ? jcbb_sigma : inlier_threshold / 3.0; }
-};
 
 enum class Status {
   ok,          ///< search completed and the pair is accepted

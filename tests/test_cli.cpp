@@ -62,6 +62,38 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
   expect_usage_error("extract --source a.bin --out /tmp/x", "--target is required");
 }
 
+// Each solver family's options are declared once (ParamField rows): a value given on the command
+// line reaches the report under the field's key, and a value out of range names the option.
+TEST(Cli, FamilyOptionsReachTheReportAndAreRangeChecked) {
+  const fs::path out = fs::temp_directory_path() / "vb_cli_family.json";
+  fs::remove(out);
+  const CliRun r = run(
+      "sweep --n 30 --outliers 0.5 --trials 1 --solvers ransac,mac,jcbb --ransac-iterations 77 "
+      "--ransac-adaptive --ransac-confidence 0.9 --mac-max-cliques 12345 --mac-min-clique 4 "
+      "--jcbb-sigma 0.02 --jcbb-confidence 0.9 --quiet --out " +
+      out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(out);
+  const auto p = nlohmann::json::parse(in)["parameters"];
+  EXPECT_EQ(p["ransac_iterations"], 77);
+  EXPECT_EQ(p["ransac_adaptive"], true);
+  EXPECT_DOUBLE_EQ(p["ransac_confidence"].get<double>(), 0.9);
+  EXPECT_EQ(p["mac_max_cliques"], 12345);
+  EXPECT_EQ(p["mac_min_clique"], 4);
+  EXPECT_DOUBLE_EQ(p["jcbb_sigma"].get<double>(), 0.02);
+  EXPECT_DOUBLE_EQ(p["jcbb_confidence"].get<double>(), 0.9);
+  fs::remove(out);
+  expect_usage_error("sweep --ransac-iterations 0 " + kOut, "--ransac-iterations: '0' is outside");
+  expect_usage_error("sweep --mac-min-clique 1 " + kOut, "--mac-min-clique: '1' is outside");
+  expect_usage_error("sweep --ransac-confidence 1.5 " + kOut, "--ransac-confidence: '1.5'");
+  const CliRun help = run("sweep --help");
+  EXPECT_NE(help.output.find("--ransac-iterations K"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("(default 10000)"), std::string::npos) << help.output;
+  const CliRun version = run("--version");
+  EXPECT_EQ(version.code, 0);
+  EXPECT_EQ(version.output.rfind("verifybench ", 0), 0u) << version.output;
+}
+
 TEST(Cli, MalformedDumpNamesFileAndLine) {
   const fs::path dir = fs::temp_directory_path() / "vb_cli_dump";
   fs::create_directories(dir);

@@ -103,8 +103,8 @@ TEST(Jcbb, NoPriorFindsTheLargestJointlyCompatibleSetOfBruteForce) {
       if (ok) best = h.size();
     }
     SolverParams params;
-    params.jcbb_sigma = sigma;
-    params.jcbb_confidence = p;
+    params.jcbb.sigma = sigma;
+    params.jcbb.confidence = p;
     params.min_inliers = 1;
     const auto r = SolverRegistry::create("jcbb")->solve(c, params);
     ASSERT_EQ(r.status, Status::ok);
@@ -166,7 +166,7 @@ TEST(Jcbb, TimeLimitReturnsTheBestSoFar) {
   const auto set = make_synthetic<3>(sp);
   SolverParams params;
   params.time_limit_s = 0.05;
-  params.jcbb_sigma = 0.05;
+  params.jcbb.sigma = 0.05;
   const auto r = SolverRegistry::create("jcbb")->solve(set.corr, params);
   EXPECT_EQ(r.status, Status::time_limit);
   EXPECT_FALSE(r.inliers.empty());

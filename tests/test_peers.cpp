@@ -23,7 +23,7 @@ void recovers(const char* name, double ratio, int iterations = 10000) {
     const auto set = make_synthetic<Dim>(sp);
     SolverParams params;
     params.seed = seed;
-    params.ransac_iterations = iterations;
+    params.ransac.iterations = iterations;
     const auto r = SolverRegistry::create(name)->solve(set.corr, params);
     ASSERT_NE(r.status, Status::error) << name << ": " << r.message;
     EXPECT_TRUE(r.accepted) << name << " seed " << seed;

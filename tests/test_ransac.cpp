@@ -114,7 +114,7 @@ void recovers_drawn_motions(const char* name) {
       p.seed = seed;
       const auto set = make_synthetic<Dim>(p);
       SolverParams sp;
-      sp.ransac_iterations = 20000;
+      sp.ransac.iterations = 20000;
       sp.seed = seed;
       const auto r = SolverRegistry::create(name)->solve(set.corr, sp);
       ASSERT_TRUE(r.accepted) << name << " ratio " << ratio << " seed " << seed;
@@ -166,7 +166,7 @@ TEST_F(Family, SameSeedSameDrawsAndAnySeedSolvesEasySets) {
   SolverParams a, b;
   a.seed = 1;
   b.seed = 2;
-  a.ransac_adaptive = b.ransac_adaptive = true;
+  a.ransac.adaptive = b.ransac.adaptive = true;
   const auto ra = SolverRegistry::create("ransac")->solve(set.corr, a);
   const auto rb = SolverRegistry::create("ransac")->solve(set.corr, b);
   const auto again = SolverRegistry::create("ransac")->solve(set.corr, a);
@@ -195,7 +195,7 @@ TEST_F(Family, ProsacSolvesAPerfectlyOrderedSetInItsFirstPhase) {
   // The adaptive count uses the inlier ratio of the pool (all inliers): a handful of draws.
   EXPECT_LT(r.counters.iterations, 50);
   const auto uniform = SolverRegistry::create("lo-ransac")->solve(set.corr, sp);
-  EXPECT_EQ(uniform.counters.iterations, sp.ransac_iterations);  // capped, as theory says
+  EXPECT_EQ(uniform.counters.iterations, sp.ransac.iterations);  // capped, as theory says
 }
 
 TEST_F(Family, FixedCountIsThePapersTenThousand) {
@@ -238,7 +238,7 @@ TEST(Family2, TimeLimitStopsTheHypothesisLoop) {
   p.outlier_ratio = 0.99;
   const auto set = make_synthetic<3>(p);
   SolverParams sp;
-  sp.ransac_iterations = 100000000;  // ~1 min of work without the limit
+  sp.ransac.iterations = 100000000;  // ~1 min of work without the limit
   sp.time_limit_s = 0.02;
   for (int threads : {1, 2}) {
     sp.threads = threads;

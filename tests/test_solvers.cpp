@@ -106,7 +106,7 @@ TEST_F(Registered, RansacIsReproducibleForASeed) {
   const auto set = make_synthetic<3>(p);
   const auto ransac = SolverRegistry::create("ransac");
   SolverParams sp;
-  sp.ransac_iterations = 2000;
+  sp.ransac.iterations = 2000;
   sp.seed = 77;
   const auto a = ransac->solve(set.corr, sp);
   const auto b = ransac->solve(set.corr, sp);
@@ -122,7 +122,7 @@ TEST_F(Registered, RansacAdaptiveStopsEarlyOnCleanData) {
   p.outlier_ratio = 0.0;
   const auto set = make_synthetic<3>(p);
   SolverParams sp;
-  sp.ransac_adaptive = true;
+  sp.ransac.adaptive = true;
   const auto r = SolverRegistry::create("ransac")->solve(set.corr, sp);
   // All 100 inliers are found by the first good sample, so k = log(0.001)/log(1 - 1) -> 0.
   EXPECT_LT(r.counters.iterations, 10);

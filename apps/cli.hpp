@@ -1,0 +1,65 @@
+#pragma once
+// What the commands share: the solver options (common ones here, each family's from its own
+// ParamField rows), success criteria, report writing.
+#include <cstdint>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "apps/options.hpp"
+#include "reports/record.hpp"
+#include "reports/report.hpp"
+#include "solvers/params.hpp"
+
+namespace verifybench::cli {
+
+/// --solvers, the common solver options, every family's options (one help group each), success
+/// criteria, --seed, --out, --quiet.
+void add_solver_options(Options& o);
+SolverParams solver_params(const Options& o);
+SuccessCriteria criteria(const Options& o);
+/// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
+std::vector<std::string> solver_names(const Options& o);
+/// The parameters block of a report: common fields, every family field, the success criteria.
+nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c);
+/// --prior-rot-deg / --prior-trans, and their values: both > 0 or both 0; radians and metres.
+void add_prior_options(Options& o, const std::string& what);
+std::pair<double, double> prior_sigmas(const Options& o);
+
+/// One summary line per aggregate of `rows` on stderr.
+void print_point(const std::vector<TrialRecord>& rows);
+
+/// Writes the report atomically and prints its path; returns 1 when a row has status "error"
+/// (its message printed by `describe`), else 0.
+template <class Row, class Describe>
+int finish(const std::string& out, const nlohmann::json& parameters, const std::vector<Row>& rows,
+           const std::vector<std::string>& argv, std::uint64_t seed, Describe describe) {
+  write_json_atomic(out, make_report(make_context(argv, seed), parameters, rows));
+  std::cout << out << "\n";
+  for (const auto& r : rows) {
+    if (r.status == "error") {
+      std::cerr << "verifybench: error: " << describe(r) << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace verifybench::cli
+
+namespace verifybench {
+// The commands (apps/cmd_*.cpp); `argv` is the whole command line, for the report's context.
+int cmd_list(const std::vector<std::string>& args);
+int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv);
+int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>& argv);
+int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv);
+int cmd_extract(const std::vector<std::string>& args);
+}  // namespace verifybench
+
+namespace verifybench::cli {
+/// The error line of a failed solver row.
+inline std::string describe_error(const TrialRecord& r) {
+  return "solver " + r.solver + " failed: " + r.message;
+}
+}  // namespace verifybench::cli

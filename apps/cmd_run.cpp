@@ -1,0 +1,61 @@
+// `verifybench run`: solvers on one correspondence dump.
+#include <cmath>
+#include <variant>
+
+#include "apps/cli.hpp"
+#include "datasets/dump_format.hpp"
+#include "generators/synthetic.hpp"
+#include "harness/harness.hpp"
+#include "harness/progress.hpp"
+
+namespace verifybench {
+
+int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  Options o;
+  o.add("dump", "DIR", "",
+        "dump folder: dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt] (required)");
+  cli::add_solver_options(o);
+  o.group("dump").add("trials", "K", "1", "repeat each solver K times (timing statistics)");
+  cli::add_prior_options(o, "the set (it needs a ground truth)");
+  o.parse(args);
+  if (o.help_requested()) {
+    std::cout << "usage: verifybench run --dump DIR [options] --out FILE.json\n" << o.help();
+    return 0;
+  }
+  const std::string dir = o.required("dump");
+  const auto names = cli::solver_names(o);
+  const SolverParams params = cli::solver_params(o);
+  const SuccessCriteria crit = cli::criteria(o);
+  const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  const std::string out = o.required("out");
+  const auto [prior_rot, prior_trans] = cli::prior_sigmas(o);
+  Dump dump = read_dump(dir);
+  std::vector<TrialRecord> rows = std::visit(
+      [&](auto& s) {
+        validate(s);
+        if (prior_rot > 0.0) {
+          if (!s.truth.T_target_source) {
+            throw UsageError("--prior-rot-deg: " + dir +
+                                 " has no ground truth to draw a prior around");
+          }
+          add_pose_prior(s, prior_rot, prior_trans, params.seed);
+        }
+        Progress progress("run", static_cast<long long>(names.size()) * trials, !o.flag("quiet"));
+        return run_on_set(names, s, dir, trials, params.seed, params, crit,
+                          [&] { progress.advance(); });
+      },
+      dump.set);
+  if (!o.flag("quiet")) cli::print_point(rows);
+  nlohmann::json parameters = cli::params_json(params, crit);
+  parameters["run"] = {
+      {"dump", dir},
+      {"trials", trials},
+      {"prior_sigma_rot_deg", prior_rot * 180.0 / M_PI},
+      {"prior_sigma_trans", prior_trans},
+      {"solvers", names},
+      {"label_threshold", dump.label_threshold ? nlohmann::json(*dump.label_threshold) : nlohmann::json(nullptr)},
+      {"dump_provenance", dump.provenance}};
+  return cli::finish(out, parameters, rows, argv, params.seed, cli::describe_error);
+}
+
+}  // namespace verifybench

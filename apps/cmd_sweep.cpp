@@ -1,0 +1,115 @@
+// `verifybench sweep`: a robustness sweep on synthetic sets.
+#include <cmath>
+#include <tuple>
+
+#include "apps/cli.hpp"
+#include "core/registry.hpp"
+#include "generators/synthetic.hpp"
+#include "harness/harness.hpp"
+#include "harness/progress.hpp"
+
+namespace verifybench {
+
+namespace {
+
+/// Refuses an unknown generator or one that lacks a requested dimension, before any work.
+void check_generator(const std::string& kind, const std::vector<int>& dims) {
+  const GeneratorInfo* g = nullptr;
+  try {
+    g = &find_generator(kind);
+  } catch (const UnknownName& e) {
+    throw UsageError(std::string("--generator: ") + e.what());
+  }
+  for (int d : dims) {
+    if ((d == 2 && !g->supports_2d) || (d == 3 && !g->supports_3d)) {
+      throw UsageError("--generator " + kind + " does not exist in " + std::to_string(d) + "D");
+    }
+  }
+}
+
+}  // namespace
+
+int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  Options o;
+  cli::add_solver_options(o);
+  o.group("synthetic sets").add("dim", "D", "3", "dimension: 2, 3 or 2,3")
+      .add("n", "N", "500", "correspondences per set")
+      .add("outliers", "RANGE", "0.5:0.99:0.05",
+           "outlier ratios: start:stop:step (stop included) or a,b,c")
+      .add("noise", "SIGMA", "0.01", "Gaussian noise per axis on inlier targets [m]")
+      .add("extent", "M", "10", "side of the cube (square) the points are drawn in [m]")
+      .add("trials", "K", "20", "sets per (dim, outlier ratio) point")
+      .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)")
+      .add("group-ratio", "R", "0.5", "rigid-group: wrong group size / inlier count")
+      .add("grid-spacing", "M", "2", "repetitive: pillar spacing along the corridor [m]")
+      .add("overlap", "F", "0.3", "partial-overlap: fraction of the scene holding the inliers")
+      .add("tail-dof", "NU", "3", "heavy-tailed: Student-t degrees of freedom")
+      .add("anisotropy", "A", "5", "anisotropic: noise along the sensor ray / across it")
+      .add("near-radius", "M", "1", "near-true, bev-orb: outliers this far from the truth [m]")
+      .add("cell", "M", "0.5", "bev-orb: bird's-eye-view cell size [m]")
+      .add("score-separation", "D", "1",
+           "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none");
+  cli::add_prior_options(o, "each set");
+  o.parse(args);
+  if (o.help_requested()) {
+    std::cout << "usage: verifybench sweep [options] --out FILE.json\n" << o.help();
+    return 0;
+  }
+  SweepConfig c;
+  c.solvers = cli::solver_names(o);
+  c.dims.clear();
+  for (const auto& d : o.list("dim")) {
+    if (d != "2" && d != "3") throw UsageError("--dim: '" + d + "' is not 2 or 3");
+    c.dims.push_back(d == "2" ? 2 : 3);
+  }
+  c.n = static_cast<int>(o.integer("n", 1, 100000000));
+  c.outlier_ratios = parse_range("--outliers", o.text("outliers"), 0.0, 1.0);
+  c.noise = o.real("noise", 0.0, 1e9);
+  c.extent = o.real("extent", 1e-9, 1e9);
+  c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  c.shape.kind = o.text("generator");
+  c.shape.group_ratio = o.real("group-ratio", 1e-9, 1e9);
+  c.shape.grid_spacing = o.real("grid-spacing", 1e-9, 1e9);
+  c.shape.overlap = o.real("overlap", 1e-9, 1.0);
+  c.shape.tail_dof = o.real("tail-dof", 1e-9, 1e9);
+  c.shape.anisotropy = o.real("anisotropy", 1.0, 1e9);
+  c.shape.near_radius = o.real("near-radius", 1e-9, 1e9);
+  c.shape.cell = o.real("cell", 1e-9, 1e9);
+  c.shape.score_separation = o.real("score-separation", -1e9, 1e9);
+  check_generator(c.shape.kind, c.dims);
+  std::tie(c.prior_sigma_rot, c.prior_sigma_trans) = cli::prior_sigmas(o);
+  c.params = cli::solver_params(o);
+  c.seed = c.params.seed;
+  c.criteria = cli::criteria(o);
+  const std::string out = o.required("out");
+
+  nlohmann::json parameters = cli::params_json(c.params, c.criteria);
+  parameters["sweep"] = {{"generator", c.shape.kind},
+                         {"generator_shape",
+                          {{"group_ratio", c.shape.group_ratio},
+                           {"grid_spacing", c.shape.grid_spacing},
+                           {"overlap", c.shape.overlap},
+                           {"tail_dof", c.shape.tail_dof},
+                           {"anisotropy", c.shape.anisotropy},
+                           {"near_radius", c.shape.near_radius},
+                           {"cell", c.shape.cell},
+                           {"score_separation", c.shape.score_separation}}},
+                         {"prior_sigma_rot_deg", c.prior_sigma_rot * 180.0 / M_PI},
+                         {"prior_sigma_trans", c.prior_sigma_trans},
+                         {"dims", c.dims},
+                         {"n", c.n},
+                         {"outlier_ratios", c.outlier_ratios},
+                         {"noise", c.noise},
+                         {"extent", c.extent},
+                         {"trials", c.trials},
+                         {"solvers", c.solvers}};
+  SweepProgress point_done;
+  if (!o.flag("quiet")) point_done = cli::print_point;
+  Progress progress("sweep", static_cast<long long>(c.dims.size() * c.outlier_ratios.size()) *
+                                 c.trials,
+                    !o.flag("quiet"));
+  const auto rows = run_sweep(c, point_done, [&] { progress.advance(); });
+  return cli::finish(out, parameters, rows, argv, c.seed, cli::describe_error);
+}
+
+}  // namespace verifybench

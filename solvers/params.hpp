@@ -1,0 +1,87 @@
+#pragma once
+// Solver parameters: the options every solver shares, plus one plain struct per solver family.
+// A family's fields are declared once, as ParamField rows in the family's own solver file
+// (ransac_solver.cpp, mac_solver.cpp, jcbb_solver.cpp); the CLI options with their defaults and
+// ranges, the validation and the report's JSON are all made from those rows.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace verifybench {
+
+struct RansacParams {
+  int iterations = 10000;     ///< fixed count, or the cap of the adaptive count
+  bool adaptive = false;      ///< `ransac`: stop at k = log(1-p) / log(1-w^s)
+  double confidence = 0.999;  ///< p of the adaptive count, in (0, 1)
+};
+
+struct MacParams {
+  long long max_cliques = 1000000;  ///< stop enumerating maximal cliques after this many
+  int min_clique = 3;               ///< smallest maximal clique that makes a hypothesis
+};
+
+struct JcbbParams {
+  double sigma = 0.0;         ///< per-axis point noise sigma [m]; 0 = inlier_threshold / 3
+  double confidence = 0.95;  ///< level of the chi-square gates, in (0, 1)
+};
+
+struct SolverParams {
+  double eps = 0.1;  ///< pair length tolerance of the correspondence graph, Eq. (1) [m]
+  double inlier_threshold = 0.1;  ///< residual ||T m - q|| of a consensus inlier [m]
+  int min_inliers = 0;  ///< accept when |inliers| >= this; 0 = paper default (5 in 3D, 10 in 2D)
+  double time_limit_s = 60.0;  ///< wall-clock limit of the search; best-so-far is returned past it
+  std::uint64_t seed = 1;      ///< seed of every random draw a solver makes
+  std::size_t max_graph_bytes = std::size_t{4} << 30;  ///< refuse larger correspondence graphs
+  int threads = 1;  ///< worker threads (0 = all cores); results do not depend on it
+  RansacParams ransac;
+  MacParams mac;
+  JcbbParams jcbb;
+
+  /// Throws std::invalid_argument naming the field and the bad value.
+  void validate() const;
+  /// min_inliers with the paper's per-dimension default applied.
+  int accept_threshold(int dim) const {
+    return min_inliers > 0 ? min_inliers : (dim == 2 ? 10 : 5);
+  }
+  double jcbb_point_sigma() const { return jcbb.sigma > 0.0 ? jcbb.sigma : inlier_threshold / 3.0; }
+};
+
+/// One tunable field of a solver family.
+struct ParamField {
+  enum class Kind { real, integer, flag };
+  std::string option;      ///< CLI option without the dashes: "ransac-iterations"
+  std::string key;         ///< report key and the name in messages: "ransac_iterations"
+  std::string value_name;  ///< shown in --help ("K"); empty for a flag
+  std::string help;
+  Kind kind = Kind::real;
+  double min = 0.0, max = 0.0;  ///< inclusive range of a real or integer
+  std::string expected;         ///< the range in words, for messages: "an integer >= 1"
+  std::function<double(const SolverParams&)> get;
+  std::function<void(SolverParams&, double)> set;
+  /// The value the report records (e.g. jcbb_sigma's effective sigma); get when empty.
+  std::function<double(const SolverParams&)> report;
+};
+
+struct ParamFamily {
+  std::string name;   ///< "ransac"
+  std::string title;  ///< heading of the family's options in --help
+  std::vector<ParamField> fields;
+};
+
+/// Binds a field to `params.*family.*member`; the default shown in --help is the member's value in
+/// a default SolverParams.
+template <class Family, class T>
+ParamField bind(Family SolverParams::*family, T Family::*member, ParamField f) {
+  f.get = [=](const SolverParams& p) { return static_cast<double>(p.*family.*member); };
+  f.set = [=](SolverParams& p, double v) { p.*family.*member = static_cast<T>(v); };
+  return f;
+}
+
+/// Every family, in --help order (ransac, mac, jcbb).
+const std::vector<ParamFamily>& param_families();
+
+/// The default of a field as --help shows it ("10000", "0.999"; "" for a flag).
+std::string default_text(const ParamField& f);
+
+}  // namespace verifybench
