@@ -54,8 +54,8 @@ void write_set(const fs::path& tmp, const LabeledSet<Dim>& s, const Dump& dump) 
   std::ofstream js(tmp / "dump.json");
   js << meta.dump(2) << "\n";
   std::ofstream tsv(tmp / "matches.tsv");
-  tsv << "#";
-  for (const auto& c : cols) tsv << " " << c;
+  // A tab-separated header line of the column names: pandas.read_csv(sep="\t") reads it as is.
+  for (std::size_t k = 0; k < cols.size(); ++k) tsv << (k ? "\t" : "") << cols[k];
   tsv << "\n" << std::setprecision(17);
   for (Eigen::Index i = 0; i < s.corr.size(); ++i) {
     for (int d = 0; d < Dim; ++d) tsv << s.corr.source(d, i) << "\t";
@@ -107,12 +107,18 @@ Dump read_set(const fs::path& dir, const json& meta) {
   std::vector<std::array<double, 6>> pts;
   std::string text;
   std::size_t line = 0;
+  bool header_seen = false;
   while (std::getline(in, text)) {
     ++line;
-    if (text.empty() || text[0] == '#') continue;
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (text.empty() || text[0] == '#') continue;  // blank, or the "# xs ys ..." header before v1.1
     std::istringstream row(text);
     std::vector<std::string> tokens;
     for (std::string t; row >> t;) tokens.push_back(t);
+    if (!header_seen && pts.empty() && tokens == cols) {  // the column-name header
+      header_seen = true;
+      continue;
+    }
     if (tokens.size() != cols.size()) {
       fail(file, "line " + std::to_string(line) + ": " + std::to_string(tokens.size()) +
                      " fields; expected " + std::to_string(cols.size()) + " (" +

@@ -1,15 +1,17 @@
 #!/usr/bin/python3
-"""Robustness curves from a verifybench sweep report.
+"""Plots of verifybench reports, as PNG and PDF.
 
-usage: plot_report.py REPORT.json [REPORT.json ...] [--out-dir DIR] [--name STEM]
-
-Writes DIR/<stem>_success.png (success rate vs outlier ratio) and DIR/<stem>_time.png (median
-time vs outlier ratio, log scale, with the p90 as a dashed line), one panel per dimension and one
-curve per solver and n. Several reports (e.g. sweeps at different n) are drawn together; the stem
-is the first report's unless --name gives one. Runs on Debian's /usr/bin/python3 with python3-matplotlib.
+Sweep reports: DIR/<stem>_success.{png,pdf} (success rate vs outlier ratio, 95% Wilson intervals)
+and DIR/<stem>_time.{png,pdf} (median time per solve, log scale, quartile band), one panel per
+(generator, dimension), one curve per (solver, n). Several sweeps (other n, other generators) are
+drawn together; each panel is titled from its own report.
+Dump reports (`verifybench run`): DIR/<stem>_dump.{png,pdf}: time per solve (median, quartiles)
+and inliers per solver, for each dump.
+DIMACS reports: DIR/<stem>_dimacs.{png,pdf}: search time per graph and algorithm (log scale);
+hatched bars did not prove optimality.
+The stem is the first report's file name unless --name gives one; DIR (--out-dir) is created.
 """
 import argparse
-import json
 import os
 import sys
 
@@ -17,113 +19,219 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_io  # noqa: E402
+
+TOOL = "plot_report"
+MARKERS = "osD^vP*X"
+LINESTYLES = ["-", "--", "-.", ":"]
 
 
 def fail(msg):
-    print(f"plot_report: error: {msg}", file=sys.stderr)
-    sys.exit(2)
+    report_io.fail(TOOL, msg)
 
 
-def load(path):
-    try:
-        with open(path) as f:
-            doc = json.load(f)
-    except (OSError, json.JSONDecodeError) as e:
-        fail(f"{path}: {e}")
-    if doc.get("schema_version") != 1:
-        fail(f"{path}: schema_version {doc.get('schema_version')!r} is not 1")
-    aggs = doc.get("aggregates")
-    if not isinstance(aggs, list):
-        fail(f"{path}: no 'aggregates' list")
-    points = [a for a in aggs if a.get("outlier_ratio") is not None]
-    if not points:
-        fail(f"{path}: no sweep points (aggregates with an outlier_ratio)")
-    for a in points:
-        for key in ("solver", "dim", "n", "success_rate", "median_time_ms", "p90_time_ms"):
-            if key not in a:
-                fail(f"{path}: aggregate {a.get('solver')!r} lacks field {key!r}")
-    return doc, points
-
-
-def curves(points):
-    """{dim: {(solver, n): [(ratio, aggregate), ...]}} sorted by ratio."""
-    out = {}
-    for a in points:
-        out.setdefault(a["dim"], {}).setdefault((a["solver"], a["n"]), []).append((a["outlier_ratio"], a))
-    for per_dim in out.values():
-        for series in per_dim.values():
-            series.sort(key=lambda p: p[0])
-    return out
-
-
-def title(doc, dim):
-    sweep = doc.get("parameters", {}).get("sweep", {})
-    eps = doc.get("parameters", {}).get("eps")
-    generator = sweep.get("generator", "uniform")
-    return (f"{generator}, {dim}D, noise {sweep.get('noise')}, eps {eps}, "
-            f"{sweep.get('trials')} trials/point")
-
-
-
-def plot(doc, points, out_dir, stem):
-    by_dim = curves(points)
-    dims = sorted(by_dim)
-    # One colour per solver, one marker per n, so that curves stay apart when there are many.
-    solvers = sorted({a["solver"] for a in points})
-    sizes = sorted({a["n"] for a in points})
+def colours(names):
     cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    if len(solvers) > len(cycle):  # 20 distinct colours before any repeats
+    if len(names) > len(cycle):  # 20 distinct colours before any repeats
         cycle = [matplotlib.colormaps["tab20"](i) for i in range(20)]
-    colour = {s: cycle[i % len(cycle)] for i, s in enumerate(solvers)}
-    marker = {n: "osD^vP*X"[i % 8] for i, n in enumerate(sizes)}
+    return {s: cycle[i % len(cycle)] for i, s in enumerate(sorted(names))}
+
+
+def save(fig, out_dir, stem, suffix):
+    """Writes PNG and PDF through temporary names, so no half-written plot has the final name."""
     paths = []
-    for kind in ("success", "time"):
-        fig, axes = plt.subplots(1, len(dims), figsize=(7.5 * len(dims), 4.8), squeeze=False)
-        for ax, dim in zip(axes[0], dims):
-            for (solver, n), series in sorted(by_dim[dim].items()):
-                x = [r for r, _ in series]
-                label = f"{solver} (n={n})"
-                style = {"color": colour[solver], "marker": marker[n]}
-                if kind == "success":
-                    ax.plot(x, [a["success_rate"] for _, a in series], label=label, **style)
-                else:
-                    ax.plot(x, [a["median_time_ms"] for _, a in series], label=label, **style)
-                    ax.plot(x, [a["p90_time_ms"] for _, a in series], linestyle="--",
-                            color=colour[solver], alpha=0.5)
-            ax.set_xlabel("outlier ratio")
-            if kind == "success":
-                ax.set_ylabel("success rate")
-                ax.set_ylim(-0.03, 1.03)
-            else:
-                ax.set_ylabel("time per solve [ms] (solid: median, dashed: p90)")
-                ax.set_yscale("log")
-            ax.set_title(title(doc, dim))
-            ax.grid(True, which="both", alpha=0.3)
-            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        fig.tight_layout()
-        path = os.path.join(out_dir, f"{stem}_{kind}.png")
-        tmp = path + ".tmp.png"
+    for ext in ("png", "pdf"):
+        path = os.path.join(out_dir, f"{stem}_{suffix}.{ext}")
+        tmp = f"{path}.tmp.{ext}"
         fig.savefig(tmp, dpi=110)
-        plt.close(fig)
-        os.replace(tmp, path)  # never leave half a PNG under the final name
+        os.replace(tmp, path)
         paths.append(path)
+    plt.close(fig)
     return paths
 
 
+def log_axis(ax):
+    """Log scale labelled at 1, 2 and 5 of every decade, not only at the decades."""
+    ax.set_yscale("log")
+    plain = FuncFormatter(lambda v, _: f"{v:g}")
+    ax.yaxis.set_major_locator(LogLocator(base=10))
+    ax.yaxis.set_major_formatter(plain)
+    ax.yaxis.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
+    ax.yaxis.set_minor_formatter(plain)
+    ax.tick_params(axis="y", which="minor", labelsize=7)
+    ax.grid(True, which="both", alpha=0.3)
+
+
+def sweep_series(reports):
+    """{(generator, dim): {"doc": first report, "curves": {(solver, n): DataFrame by ratio}}}."""
+    panels = {}
+    for doc in reports:
+        rows = report_io.results_frame(doc)
+        rows = rows[rows["outlier_ratio"].notna()]
+        if rows.empty:
+            continue
+        generator = doc["parameters"]["sweep"].get("generator", "uniform")
+        for (dim, solver, n, ratio), g in rows.groupby(["dim", "solver", "n", "outlier_ratio"]):
+            panel = panels.setdefault((generator, dim), {"doc": doc, "curves": {}})
+            judged = g["success"].dropna()
+            lo, hi = report_io.wilson_interval(judged.astype(bool).sum(), len(judged))
+            times = g["time_ms"]
+            panel["curves"].setdefault((solver, n), []).append({
+                "ratio": ratio,
+                "success": judged.astype(bool).mean() if len(judged) else float("nan"),
+                "lo": lo, "hi": hi,
+                "median": times.median(), "q1": times.quantile(0.25), "q3": times.quantile(0.75)})
+    return panels
+
+
+def plot_sweeps(reports, out_dir, stem):
+    panels = sweep_series(reports)
+    if not panels:
+        fail("no sweep points (rows with an outlier_ratio) in the sweep reports")
+    keys = sorted(panels)
+    solvers = sorted({s for p in panels.values() for s, _ in p["curves"]})
+    sizes = sorted({n for p in panels.values() for _, n in p["curves"]})
+    colour = colours(solvers)
+    marker = {n: MARKERS[i % len(MARKERS)] for i, n in enumerate(sizes)}
+    # Curves that coincide (two solvers at 100%) stay visible: each solver is shifted slightly
+    # along x and drawn in its own line style.
+    ratios = sorted({pt["ratio"] for p in panels.values() for c in p["curves"].values() for pt in c})
+    step = min((b - a for a, b in zip(ratios, ratios[1:])), default=0.05)
+    offset = {s: (i - (len(solvers) - 1) / 2) * step * 0.12 for i, s in enumerate(solvers)}
+    style = {s: LINESTYLES[i % len(LINESTYLES)] for i, s in enumerate(solvers)}
+    paths = []
+    for kind in ("success", "time"):
+        fig, axes = plt.subplots(1, len(keys), figsize=(7.5 * len(keys), 5.0), squeeze=False)
+        for ax, key in zip(axes[0], keys):
+            generator, dim = key
+            doc = panels[key]["doc"]
+            for (solver, n), pts in sorted(panels[key]["curves"].items()):
+                pts = sorted(pts, key=lambda p: p["ratio"])
+                x = [p["ratio"] + offset[solver] for p in pts]
+                kw = {"color": colour[solver], "marker": marker[n], "linestyle": style[solver],
+                      "label": f"{solver} (n={n})", "markersize": 4}
+                if kind == "success":
+                    y = [p["success"] for p in pts]
+                    err = [[p["success"] - p["lo"] for p in pts], [p["hi"] - p["success"] for p in pts]]
+                    ax.errorbar(x, y, yerr=err, capsize=2, elinewidth=0.8, **kw)
+                else:
+                    ax.plot(x, [p["median"] for p in pts], **kw)
+                    ax.fill_between(x, [p["q1"] for p in pts], [p["q3"] for p in pts],
+                                    color=colour[solver], alpha=0.15, linewidth=0)
+            ax.set_xlabel("outlier ratio")
+            if kind == "success":
+                ax.set_ylabel("success rate (bars: 95% Wilson interval)")
+                ax.set_ylim(-0.03, 1.03)
+                ax.grid(True, alpha=0.3)
+            else:
+                ax.set_ylabel("time per solve [ms] (line: median, band: quartiles)")
+                log_axis(ax)
+            sweep = doc["parameters"]["sweep"]
+            ax.set_title(f"{generator}, {dim}D, noise {sweep.get('noise')}, eps "
+                         f"{doc['parameters'].get('eps')}, {sweep.get('trials')} trials/point",
+                         fontsize=9)
+            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        fig.suptitle(report_io.success_criterion(reports[0]), fontsize=9)
+        fig.tight_layout()
+        paths += save(fig, out_dir, stem, kind)
+    return paths
+
+
+def plot_dumps(reports, out_dir, stem):
+    import pandas as pd
+    rows = pd.concat([report_io.results_frame(d) for d in reports], ignore_index=True)
+    if rows.empty:
+        fail("the dump reports hold no rows")
+    datasets = sorted(rows["dataset"].unique())
+    colour = colours(rows["solver"].unique())
+    fig, axes = plt.subplots(len(datasets), 2, figsize=(12, 1.2 + 0.45 * rows["solver"].nunique()
+                                                        * len(datasets)), squeeze=False)
+    for (ax_t, ax_i), dataset in zip(axes, datasets):
+        g = rows[rows["dataset"] == dataset]
+        stats = g.groupby("solver").agg(median=("time_ms", "median"),
+                                        q1=("time_ms", lambda t: t.quantile(0.25)),
+                                        q3=("time_ms", lambda t: t.quantile(0.75)),
+                                        inliers=("inliers", "median"),
+                                        true_inliers=("true_inliers", "max"),
+                                        success=("success", lambda s: s.dropna().astype(bool).mean()
+                                                 if s.notna().any() else float("nan")))
+        stats = stats.sort_values("median")
+        y = range(len(stats))
+        ax_t.barh(y, stats["median"], xerr=[stats["median"] - stats["q1"], stats["q3"] - stats["median"]],
+                  color=[colour[s] for s in stats.index], capsize=2)
+        ax_t.set_yticks(list(y), stats.index, fontsize=8)
+        ax_t.set_xscale("log")
+        ax_t.set_xlabel("time per solve [ms] (median, quartiles)")
+        ax_t.set_title(os.path.basename(str(dataset).rstrip("/")), fontsize=9)
+        ax_t.grid(True, which="both", axis="x", alpha=0.3)
+        ax_i.barh(y, stats["inliers"], color=[colour[s] for s in stats.index])
+        ax_i.set_yticks(list(y), [""] * len(stats))
+        truth = stats["true_inliers"].dropna()
+        if len(truth):
+            ax_i.axvline(truth.iloc[0], color="k", linestyle="--", linewidth=0.8, label="true inliers")
+            ax_i.legend(fontsize=7)
+        for k, (_, s) in enumerate(stats.iterrows()):
+            if s["success"] == s["success"]:  # not NaN
+                ax_i.text(s["inliers"], k, f"  success {s['success']:.2f}", va="center", fontsize=7)
+        ax_i.set_xlabel("selected inliers (median)")
+    fig.suptitle(report_io.success_criterion(reports[0]), fontsize=9)
+    fig.tight_layout()
+    return save(fig, out_dir, stem, "dump")
+
+
+def plot_dimacs(reports, out_dir, stem):
+    import pandas as pd
+    rows = pd.concat([report_io.results_frame(d) for d in reports], ignore_index=True)
+    if rows.empty:
+        fail("the DIMACS reports hold no rows")
+    rows["graph_name"] = rows["graph"].map(lambda p: os.path.splitext(os.path.basename(p))[0])
+    graphs = sorted(rows["graph_name"].unique())
+    algorithms = sorted(rows["algorithm"].unique())
+    colour = colours(algorithms)
+    width = 0.8 / len(algorithms)
+    fig, ax = plt.subplots(figsize=(max(8, 0.6 * len(graphs) * max(1, len(algorithms) / 2)), 5))
+    for k, algorithm in enumerate(algorithms):
+        g = rows[rows["algorithm"] == algorithm].set_index("graph_name")
+        for i, graph in enumerate(graphs):
+            if graph not in g.index:
+                continue
+            r = g.loc[[graph]].iloc[0]
+            ax.bar(i + (k - (len(algorithms) - 1) / 2) * width, max(r["time_ms"], 1e-3), width,
+                   color=colour[algorithm], hatch=None if r["status"] == "ok" else "//",
+                   edgecolor="k" if r["status"] != "ok" else None, linewidth=0.4,
+                   label=algorithm if i == 0 else None)
+    ax.set_xticks(range(len(graphs)), graphs, rotation=60, ha="right", fontsize=8)
+    ax.set_ylabel("search time [ms] (hatched: not proven optimal)")
+    log_axis(ax)
+    limit = reports[0].get("parameters", {}).get("time_limit_s")
+    ax.set_title(f"maximum clique on DIMACS graphs, time limit {limit} s", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    fig.tight_layout()
+    return save(fig, out_dir, stem, "dimacs")
+
+
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("reports", nargs="+")
+    parser = argparse.ArgumentParser(prog="plot_report.py", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("reports", nargs="+", metavar="REPORT.json")
     parser.add_argument("--out-dir", default=None, help="default: the first report's folder")
-    parser.add_argument("--name", default=None, help="file name stem of the PNGs")
+    parser.add_argument("--name", default=None, help="file name stem of the plots")
     args = parser.parse_args()
-    doc, points = load(args.reports[0])
-    for path in args.reports[1:]:
-        points += load(path)[1]
+    reports = [report_io.load_report(TOOL, p) for p in args.reports]
+    kinds = {report_io.report_kind(d) for d in reports}
+    if len(kinds) != 1:
+        fail(f"the reports mix kinds ({', '.join(sorted(kinds))}); plot each kind on its own")
     out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.reports[0]))
-    if not os.path.isdir(out_dir):
-        fail(f"{out_dir}: output folder does not exist")
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except OSError as e:
+        fail(f"{out_dir}: {e}")
     stem = args.name or os.path.splitext(os.path.basename(args.reports[0]))[0]
-    for path in plot(doc, points, out_dir, stem):
+    plot = {"sweep": plot_sweeps, "run": plot_dumps, "dimacs": plot_dimacs}[kinds.pop()]
+    for path in plot(reports, out_dir, stem):
         print(path)
 
 

@@ -1,17 +1,16 @@
 #!/usr/bin/python3
 """Per-pair tables from `verifybench run` reports on real dumps.
 
-usage: real_table.py REPORT.json [REPORT.json ...]
-
 For each report (one dump): a header with the dump's match count, labelled inliers and the
 extraction counts when the dump has provenance, then one row per solver: accepted (of the trials),
 median inliers, median rotation / translation error against the ground truth, median time.
 """
-import statistics
+import os
 import sys
 
-import report_io
-from report_io import fmt
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_io  # noqa: E402
+from report_io import fmt  # noqa: E402
 
 
 def fail(msg):
@@ -19,13 +18,14 @@ def fail(msg):
 
 
 def med(values):
-    values = [v for v in values if v is not None]
-    return statistics.median(values) if values else None
+    """Median of the non-null values (pandas), None when there are none."""
+    import pandas as pd
+    m = pd.Series([v for v in values if v is not None], dtype=float).median()
+    return None if pd.isna(m) else m
 
 
-def main(paths):
-    if not paths:
-        fail("no report given")
+def main(argv):
+    paths = report_io.parser("real_table", __doc__).parse_args(argv).reports
     for path in paths:
         doc = report_io.load_report("real_table", path)
         run = doc.get("parameters", {}).get("run", {})

@@ -1,24 +1,23 @@
 #!/usr/bin/python3
 """Compact robustness tables from verifybench sweep reports.
 
-usage: robustness_table.py REPORT.json [REPORT.json ...]
-
 For each (generator, dimension, n, pose prior) found in the reports' aggregates, one markdown table: a row per
 solver, a column per outlier ratio, each cell "success rate / median time in ms" (success as the
 report defines it; "-" when the point has no ground truth). Nothing is recomputed.
 """
+import os
 import sys
 
-import report_io
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_io  # noqa: E402
 
 
 def fail(msg):
     report_io.fail("robustness_table", msg)
 
 
-def main(paths):
-    if not paths:
-        fail("no report given (usage: robustness_table.py REPORT.json [...])")
+def main(argv):
+    paths = report_io.parser("robustness_table", __doc__).parse_args(argv).reports
     groups = {}
     for path in paths:
         doc = report_io.load_report("robustness_table", path)

@@ -1,31 +1,44 @@
 #!/usr/bin/python3
-"""Markdown tables from verifybench reports.
+"""Tables of the aggregates of verifybench reports, as markdown or CSV.
 
-usage: summarize.py REPORT.json [REPORT.json ...]
-
-One row per aggregate (solver x setting): dim, n, outlier ratio, solver, trials, success rate,
-accept rate, median and p90 time, median inliers and median errors; then, for real dumps, one row
-per result. Columns come from the reports only; nothing is recomputed.
+One row per aggregate (solver x setting): dataset, dim, n, outlier ratio, solver, trials, success
+rate, accept rate, median and p90 time, median inliers and median errors. Columns come from the
+reports only; nothing is recomputed. --format csv writes every aggregate field, one row each, with
+the report's path in a first column (pandas: read_csv).
 """
+import os
 import sys
 
-import report_io
-from report_io import fmt
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_io  # noqa: E402
+from report_io import fmt  # noqa: E402
+
+TOOL = "summarize"
 
 
-def fail(msg):
-    report_io.fail("summarize", msg)
-
-
-def main(paths):
-    if not paths:
-        fail("no report given (usage: summarize.py REPORT.json [...])")
-    aggs = []
-    for path in paths:
-        doc = report_io.load_report("summarize", path)
-        if "aggregates" not in doc:
-            fail(f"{path}: no aggregates")
-        aggs += doc["aggregates"]
+def main(argv):
+    parser = report_io.parser(TOOL, __doc__)
+    parser.add_argument("--format", choices=("md", "csv"), default="md",
+                        help="markdown table (default) or CSV of every aggregate field")
+    args = parser.parse_args(argv)
+    docs = [(path, report_io.load_report(TOOL, path)) for path in args.reports]
+    if args.format == "csv":
+        import pandas as pd
+        frames = []
+        for path, doc in docs:
+            f = report_io.aggregates_frame(doc)
+            f.insert(0, "report", path)
+            frames.append(f)
+        pd.concat(frames, ignore_index=True).to_csv(sys.stdout, index=False)
+        return
+    aggs = [a for _, doc in docs for a in doc["aggregates"]]
+    if aggs and "solver" not in aggs[0]:  # a DIMACS report: one row per algorithm
+        print("| algorithm | graphs | proven | correct | total ms | median ms |")
+        print("|---|---|---|---|---|---|")
+        for a in aggs:
+            print(f"| {a.get('algorithm')} | {a.get('graphs')} | {a.get('proven')} | {a.get('correct')} "
+                  f"| {fmt(a.get('total_time_ms'), '.2f')} | {fmt(a.get('median_time_ms'), '.2f')} |")
+        return
     print("| dataset | dim | n | outliers | solver | trials | success | accepted | median ms | p90 ms "
           "| median inliers | median rot err (deg) | median trans err |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")

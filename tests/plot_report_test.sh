@@ -1,28 +1,57 @@
 #!/usr/bin/env bash
-# ctest: a small sweep report through reports/plot_report.py must give two PNG files, and
-# through the table scripts the rows it holds.
+# ctest: reports made by the CLI through the report scripts. Sweeps give success and time plots
+# (PNG and PDF), a DIMACS report its own plot, two generators two panels; the tables hold the
+# rows; malformed input is one line naming the file, never a traceback.
 set -euo pipefail
 src=$1 out=$2
+py=/usr/bin/python3
 rm -rf "$out" && mkdir -p "$out"
+is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || { echo "not a PNG: $1"; exit 1; }; }
+is_pdf() { [ "$(head -c 5 "$1")" = "%PDF-" ] || { echo "not a PDF: $1"; exit 1; }; }
 "$VERIFYBENCH" sweep --dim 2,3 --n 60 --outliers 0.5,0.9 --trials 2 --quiet --out "$out/r.json" >/dev/null
-/usr/bin/python3 "$src/reports/plot_report.py" "$out/r.json" --out-dir "$out"
-for f in "$out/r_success.png" "$out/r_time.png"; do
-  [ "$(head -c 8 "$f" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || { echo "not a PNG: $f"; exit 1; }
-done
+"$VERIFYBENCH" sweep --generator repetitive --dim 3 --n 60 --outliers 0.5,0.9 --trials 2 --quiet \
+  --out "$out/rep.json" >/dev/null
+# The output folder is created when missing.
+$py "$src/reports/plot_report.py" "$out/r.json" "$out/rep.json" --out-dir "$out/plots" >"$out/paths"
+for kind in success time; do is_png "$out/plots/r_$kind.png"; is_pdf "$out/plots/r_$kind.pdf"; done
+grep -c . "$out/paths" | grep -qx 4 || { echo "expected 4 plot paths:"; cat "$out/paths"; exit 1; }
+# A DIMACS report gets its own plot.
+printf 'p edge 4 6\ne 1 2\ne 1 3\ne 1 4\ne 2 3\ne 2 4\ne 3 4\n' > "$out/k4.clq"
+"$VERIFYBENCH" dimacs "$out/k4.clq" --algorithms bbmc,greedy --quiet --out "$out/d.json" >/dev/null
+$py "$src/reports/plot_report.py" "$out/d.json" --out-dir "$out/plots" >/dev/null
+is_png "$out/plots/d_dimacs.png"; is_pdf "$out/plots/d_dimacs.pdf"
+$py "$src/reports/summarize.py" "$out/d.json" > "$out/d.md"
+grep -q '^| bbmc | 1 | 1 | ' "$out/d.md" ||
+  { echo "summarize lost the DIMACS row"; exit 1; }
+# Mixed kinds are refused with a message.
+if $py "$src/reports/plot_report.py" "$out/r.json" "$out/d.json" 2>"$out/err"; then
+  echo "mixed report kinds accepted"; exit 1
+fi
+grep -q "mix kinds" "$out/err" || { cat "$out/err"; exit 1; }
 # A malformed report must fail with a message, not a traceback.
 echo '{"schema_version": 1}' > "$out/bad.json"
-if /usr/bin/python3 "$src/reports/plot_report.py" "$out/bad.json" --out-dir "$out" 2>"$out/err"; then
+if $py "$src/reports/plot_report.py" "$out/bad.json" --out-dir "$out" 2>"$out/err"; then
   echo "malformed report accepted"; exit 1
 fi
-grep -q "bad.json" "$out/err" || { echo "error does not name the file:"; cat "$out/err"; exit 1; }
+grep -q "bad.json" "$out/err" && ! grep -q Traceback "$out/err" ||
+  { echo "error does not name the file:"; cat "$out/err"; exit 1; }
 # The table scripts on the same report: one row per solver and a cell per ratio, or per trial row.
-/usr/bin/python3 "$src/reports/robustness_table.py" "$out/r.json" > "$out/rob.md"
+$py "$src/reports/robustness_table.py" "$out/r.json" > "$out/rob.md"
 grep -q '^| clique | ' "$out/rob.md" && grep -q '^| ransac | ' "$out/rob.md" &&
   grep -q 'uniform, 3D, n = 60' "$out/rob.md" || { echo "robustness table:"; cat "$out/rob.md"; exit 1; }
-/usr/bin/python3 "$src/reports/summarize.py" "$out/r.json" > "$out/summary.md"
+$py "$src/reports/summarize.py" "$out/r.json" > "$out/summary.md"
 grep -q '| synthetic | 2 | 60 | 0.90 | clique |' "$out/summary.md" || { echo "summarize lost a row"; exit 1; }
-if /usr/bin/python3 "$src/reports/real_table.py" "$out/missing.json" 2>"$out/err"; then
+# CSV: a header and one line per aggregate (2 dims x 2 ratios x 2 solvers), read back by pandas.
+$py "$src/reports/summarize.py" --format csv "$out/r.json" > "$out/summary.csv"
+$py -c "import pandas as pd, sys; f = pd.read_csv(sys.argv[1]); assert len(f) == 8, len(f); \
+assert {'report', 'solver', 'success_rate'} <= set(f.columns), list(f.columns)" "$out/summary.csv"
+if $py "$src/reports/real_table.py" "$out/missing.json" 2>"$out/err"; then
   echo "missing report accepted"; exit 1
 fi
 grep -q "real_table: error: .*missing.json" "$out/err" || { cat "$out/err"; exit 1; }
+# Every script answers --help.
+for s in plot_report summarize robustness_table real_table; do
+  $py "$src/reports/$s.py" --help > "$out/help"
+  grep -q "usage: $s.py" "$out/help" || { echo "$s.py --help"; exit 1; }
+done
 echo "plot_report: ok"

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "graph/compatibility_graph.hpp"
+#include "datasets/dump_format.hpp"
 #include "datasets/text_dump.hpp"
 #include "cliques/max_clique.hpp"
 
@@ -100,6 +101,96 @@ TEST_F(DumpReader, RejectsMismatchedLabelsAndBadGroundTruth) {
   EXPECT_NE(error().find("not a rotation"), std::string::npos) << error();
   write("GTmat.txt", "1 0 0 0\n0 1 0 0\n0 0 1 0\n");
   EXPECT_NE(error().find("expected a 4x4 matrix"), std::string::npos) << error();
+}
+
+TEST(DumpFormat, RoundTripsEveryField) {
+  LabeledSet<3> s;
+  s.corr.source = Eigen::Matrix3Xd::Random(3, 7) * 50;
+  s.corr.target = Eigen::Matrix3Xd::Random(3, 7) * 50;
+  s.corr.score = {-1, -2, -3, -4.5, 0, 7, 1e-9};
+  s.truth.labels = {1, 0, 1, 0, 0, 1, 1};
+  Rigid<3> T = Rigid<3>::Identity();
+  T.linear() = Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(1, -2, 3);
+  s.truth.T_target_source = T;
+  Dump d;
+  d.set = s;
+  d.label_threshold = 0.75;
+  d.provenance = {{"tool", "test"}};
+  const fs::path dir = fs::temp_directory_path() / "vb_dump_roundtrip";
+  fs::remove_all(dir);
+  write_dump(dir.string(), d);
+  EXPECT_THROW(write_dump(dir.string(), d), std::runtime_error);  // never overwrites
+  const Dump back = read_dump(dir.string());
+  const auto& b = std::get<LabeledSet<3>>(back.set);
+  EXPECT_TRUE(b.corr.source.isApprox(s.corr.source, 1e-15));
+  EXPECT_TRUE(b.corr.target.isApprox(s.corr.target, 1e-15));
+  EXPECT_EQ(b.corr.score, s.corr.score);
+  EXPECT_EQ(b.truth.labels, s.truth.labels);
+  EXPECT_TRUE(b.truth.T_target_source->isApprox(T, 1e-12));
+  EXPECT_EQ(*back.label_threshold, 0.75);
+  EXPECT_EQ(back.provenance["tool"], "test");
+  // A corrupted row names file, line and field.
+  {
+    std::ofstream out(dir / "matches.tsv", std::ios::app);
+    out << "1\t2\t3\t4\t5\tsix\t0\t1\n";
+  }
+  try {
+    read_dump(dir.string());
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("matches.tsv"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 9"), std::string::npos) << m;
+    EXPECT_NE(m.find("zt = 'six'"), std::string::npos) << m;
+  }
+  // A header from the future, a count that disagrees, and no JSON at all are named too.
+  auto expect_error = [&](const std::string& json_text, const std::string& needle) {
+    std::ofstream(dir / "dump.json") << json_text;
+    try {
+      read_dump(dir.string());
+      FAIL() << json_text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("dump.json"), std::string::npos) << e.what();
+    }
+  };
+  expect_error(R"({"format": "verifybench-dump", "version": 2, "dim": 3})", "version = 2");
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 4})", "dim = 4");
+  expect_error(R"({"format": "something-else", "version": 1})", "format");
+  expect_error("{not json", "not valid JSON");
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 2,
+                   "columns": ["xs", "ys", "zs", "xt", "yt", "zt"]})",
+               "columns do not match dim 2");
+  fs::remove_all(dir);
+}
+
+// matches.tsv opens with a tab-separated line of column names (pandas reads it as is); the
+// "# xs ys ..." header of earlier dumps is still read.
+TEST(DumpFormat, MatchesTsvHasATabSeparatedHeaderAndOldHeadersStillRead) {
+  LabeledSet<2> s;
+  s.corr.source.resize(2, 3);
+  s.corr.target.resize(2, 3);
+  s.corr.source << 0, 1, 0, 0, 0, 1;
+  s.corr.target << 1, 2, 1, 1, 1, 2;
+  s.truth.labels = {1, 0, 1};
+  Dump d;
+  d.set = s;
+  const fs::path dir = fs::temp_directory_path() / "vb_dump_header";
+  fs::remove_all(dir);
+  write_dump(dir.string(), d);
+  std::ifstream in(dir / "matches.tsv");
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "xs\tys\txt\tyt\tlabel");
+  in.close();
+  std::ofstream(dir / "matches.tsv") << "# xs ys xt yt label\n0 0 1 1 1\n1 0 2 1 0\n0 1 1 2 1\n";
+  const Dump back = read_dump(dir.string());
+  const auto& b = std::get<LabeledSet<2>>(back.set);
+  ASSERT_EQ(b.corr.size(), 3);
+  EXPECT_EQ(b.corr.target(0, 2), 1.0);
+  EXPECT_EQ(b.truth.labels, (std::vector<std::uint8_t>{1, 0, 1}));
+  fs::remove_all(dir);
 }
 
 TEST(RealDump, ThreeDMatch6614HasKnownCliqueNumber) {

@@ -1,6 +1,5 @@
 // The front end against oracles: B-SHOT codes worked out by hand from the rule, HBST against
-// brute-force Hamming search, the BEV image of a drawn point set counted by hand, the dump format
-// round trip, and extraction on a drawn scene with a known motion (the motion is recovered).
+// brute-force Hamming search, the BEV image of a drawn point set counted by hand, and and extraction on a drawn scene with a known motion (the motion is recovered).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -221,68 +220,6 @@ TEST(Extract, RecoversAKnownMotionFromADrawnStreet2D) {
   T2.translation() = Eigen::Vector2d(2.0, 1.0);
   EXPECT_LT(rotation_error_deg(r.T_target_source, T2), 2.0);
   EXPECT_LT(translation_error(r.T_target_source, T2), 0.5);
-}
-
-TEST(DumpFormat, RoundTripsEveryField) {
-  LabeledSet<3> s;
-  s.corr.source = Eigen::Matrix3Xd::Random(3, 7) * 50;
-  s.corr.target = Eigen::Matrix3Xd::Random(3, 7) * 50;
-  s.corr.score = {-1, -2, -3, -4.5, 0, 7, 1e-9};
-  s.truth.labels = {1, 0, 1, 0, 0, 1, 1};
-  Rigid<3> T = Rigid<3>::Identity();
-  T.linear() = Eigen::AngleAxisd(1.0, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  T.translation() = Eigen::Vector3d(1, -2, 3);
-  s.truth.T_target_source = T;
-  Dump d;
-  d.set = s;
-  d.label_threshold = 0.75;
-  d.provenance = {{"tool", "test"}};
-  const fs::path dir = fs::temp_directory_path() / "vb_dump_roundtrip";
-  fs::remove_all(dir);
-  write_dump(dir.string(), d);
-  EXPECT_THROW(write_dump(dir.string(), d), std::runtime_error);  // never overwrites
-  const Dump back = read_dump(dir.string());
-  const auto& b = std::get<LabeledSet<3>>(back.set);
-  EXPECT_TRUE(b.corr.source.isApprox(s.corr.source, 1e-15));
-  EXPECT_TRUE(b.corr.target.isApprox(s.corr.target, 1e-15));
-  EXPECT_EQ(b.corr.score, s.corr.score);
-  EXPECT_EQ(b.truth.labels, s.truth.labels);
-  EXPECT_TRUE(b.truth.T_target_source->isApprox(T, 1e-12));
-  EXPECT_EQ(*back.label_threshold, 0.75);
-  EXPECT_EQ(back.provenance["tool"], "test");
-  // A corrupted row names file, line and field.
-  {
-    std::ofstream out(dir / "matches.tsv", std::ios::app);
-    out << "1\t2\t3\t4\t5\tsix\t0\t1\n";
-  }
-  try {
-    read_dump(dir.string());
-    FAIL();
-  } catch (const InputError& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("matches.tsv"), std::string::npos) << m;
-    EXPECT_NE(m.find("line 9"), std::string::npos) << m;
-    EXPECT_NE(m.find("zt = 'six'"), std::string::npos) << m;
-  }
-  // A header from the future, a count that disagrees, and no JSON at all are named too.
-  auto expect_error = [&](const std::string& json_text, const std::string& needle) {
-    std::ofstream(dir / "dump.json") << json_text;
-    try {
-      read_dump(dir.string());
-      FAIL() << json_text;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("dump.json"), std::string::npos) << e.what();
-    }
-  };
-  expect_error(R"({"format": "verifybench-dump", "version": 2, "dim": 3})", "version = 2");
-  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 4})", "dim = 4");
-  expect_error(R"({"format": "something-else", "version": 1})", "format");
-  expect_error("{not json", "not valid JSON");
-  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 2,
-                   "columns": ["xs", "ys", "zs", "xt", "yt", "zt"]})",
-               "columns do not match dim 2");
-  fs::remove_all(dir);
 }
 
 TEST(CloudIo, MalformedAndEmptyCloudsAreNamedErrors) {
