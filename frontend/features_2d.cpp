@@ -29,7 +29,13 @@ Features features_2d(const Cloud& cloud, const Pipeline2dParams& p) {
   f.counts["bev_occupied"] = occupied;
 
   StopWatch orb_clock;
-  cv::setNumThreads(1);
+  // One thread inside OpenCV for this call only (results must not depend on the thread count),
+  // restored after, so the caller's OpenCV setting is left as it was.
+  struct OneThread {
+    int saved = cv::getNumThreads();
+    OneThread() { cv::setNumThreads(1); }
+    ~OneThread() { cv::setNumThreads(saved); }
+  } one_thread;
   const cv::Mat image(bev.size, bev.size, CV_8UC1, const_cast<std::uint8_t*>(bev.pixels.data()));
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
