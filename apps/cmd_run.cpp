@@ -54,7 +54,10 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
       {"prior_sigma_trans", prior_trans},
       {"solvers", names},
       {"label_threshold", dump.label_threshold ? nlohmann::json(*dump.label_threshold) : nlohmann::json(nullptr)},
-      {"dump_provenance", dump.provenance}};
+      {"dump_provenance", dump.provenance},
+      // |R^T R - I| of the ground truth as the dump published it (projected onto SO(n) for use).
+      {"ground_truth_rotation_residual",
+       std::visit([](const auto& s) { return s.truth.rotation_residual; }, dump.set)}};
   return cli::finish(out, parameters, rows, argv, params.seed, cli::describe_error);
 }
 

@@ -47,6 +47,9 @@ template <int Dim>
 struct GroundTruth {
   std::optional<Rigid<Dim>> T_target_source;  ///< true motion, when known
   std::vector<std::uint8_t> labels;           ///< 1 = true inlier; empty when unknown
+  /// |R^T R - I|_F of the motion as its file published it, before projection onto SO(Dim)
+  /// (core/transform.hpp); 0 when it was exact or drawn.
+  double rotation_residual = 0.0;
 };
 
 template <int Dim>

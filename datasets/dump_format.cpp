@@ -1,5 +1,7 @@
 #include "datasets/dump_format.hpp"
 
+#include "core/transform.hpp"
+
 #include <unistd.h>
 
 #include <array>
@@ -163,16 +165,10 @@ Dump read_set(const fs::path& dir, const json& meta) {
     Eigen::Matrix<double, Dim + 1, Dim + 1> M;
     for (int r = 0; r <= Dim; ++r)
       for (int c = 0; c <= Dim; ++c) M(r, c) = m[static_cast<std::size_t>(r * (Dim + 1) + c)];
-    const Eigen::Matrix<double, Dim, Dim> R = M.template topLeftCorner<Dim, Dim>();
-    if (!M.allFinite() ||
-        (R.transpose() * R - Eigen::Matrix<double, Dim, Dim>::Identity()).norm() > 1e-4 ||
-        std::abs(R.determinant() - 1.0) > 1e-4) {
-      fail(dir / "dump.json", "field T_target_source is not a rigid motion");
-    }
-    Rigid<Dim> T = Rigid<Dim>::Identity();
-    T.linear() = R;
-    T.translation() = M.template topRightCorner<Dim, 1>();
-    s.truth.T_target_source = T;
+    const PublishedRigid<Dim> T =
+        published_rigid<Dim>(M, (dir / "dump.json").string() + ": field T_target_source");
+    s.truth.T_target_source = T.T;
+    s.truth.rotation_residual = T.rotation_residual;
   }
   try {
     validate(s);

@@ -1,6 +1,7 @@
 #include "datasets/text_dump.hpp"
 
-#include <Eigen/SVD>
+#include "core/transform.hpp"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -93,7 +94,7 @@ std::vector<std::uint8_t> read_labels(const std::string& file, std::size_t expec
 }
 
 template <int Dim>
-Rigid<Dim> read_transform(const std::string& file) {
+PublishedRigid<Dim> read_transform(const std::string& file) {
   constexpr int H = Dim + 1;
   const auto rows = read_rows(file, [](int col) { return "column " + std::to_string(col + 1); });
   if (rows.size() != H) {
@@ -110,23 +111,11 @@ Rigid<Dim> read_transform(const std::string& file) {
     }
     for (int c = 0; c < H; ++c) M(r, c) = rows[r].values[static_cast<std::size_t>(c)];
   }
+  if (!M.allFinite()) fail(file, 0, "the matrix has a non-finite entry");
   Eigen::Matrix<double, 1, H> last = Eigen::Matrix<double, 1, H>::Zero();
   last(Dim) = 1.0;
   if ((M.row(Dim) - last).norm() > 1e-6) fail(file, rows[Dim].line, "last row must be 0 ... 0 1");
-  const Eigen::Matrix<double, Dim, Dim> R = M.template topLeftCorner<Dim, Dim>();
-  const double orth = (R.transpose() * R - Eigen::Matrix<double, Dim, Dim>::Identity()).norm();
-  if (orth > 1e-4 || R.determinant() < 0.0) {
-    fail(file, 0,
-         "rotation block is not a rotation (|R^T R - I| = " + std::to_string(orth) +
-             ", det = " + std::to_string(R.determinant()) + ")");
-  }
-  // Project onto SO(Dim) so that printed digits do not leave a slightly non-orthogonal matrix.
-  Eigen::JacobiSVD<Eigen::Matrix<double, Dim, Dim>> svd(R,
-                                                        Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Rigid<Dim> T = Rigid<Dim>::Identity();
-  T.linear() = svd.matrixU() * svd.matrixV().transpose();
-  T.translation() = M.template topRightCorner<Dim, 1>();
-  return T;
+  return published_rigid<Dim>(M, file);
 }
 
 template <int Dim>
@@ -135,7 +124,11 @@ AnySet finish(const std::string& dir, const std::string& corr_file, const std::v
   const fs::path labels = fs::path(dir) / "label.txt";
   const fs::path gt = fs::path(dir) / "GTmat.txt";
   if (fs::exists(labels)) set.truth.labels = read_labels(labels.string(), rows.size());
-  if (fs::exists(gt)) set.truth.T_target_source = read_transform<Dim>(gt.string());
+  if (fs::exists(gt)) {
+    const PublishedRigid<Dim> T = read_transform<Dim>(gt.string());
+    set.truth.T_target_source = T.T;
+    set.truth.rotation_residual = T.rotation_residual;
+  }
   return set;
 }
 

@@ -1,5 +1,7 @@
 #include "frontend/cloud_io.hpp"
 
+#include "core/transform.hpp"
+
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -98,16 +100,7 @@ Rigid<3> read_transform(const std::string& path) {
   Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
   for (std::size_t k = 0; k < v.size(); ++k)
     M(static_cast<int>(k / 4), static_cast<int>(k % 4)) = v[k];
-  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
-  if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-4 ||
-      std::abs(R.determinant() - 1.0) > 1e-4 ||
-      (v.size() == 16 && (M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9)) {
-    fail(path, "not a rigid transform (rotation not orthonormal with det +1, or bad last row)");
-  }
-  Rigid<3> T = Rigid<3>::Identity();
-  T.linear() = R;
-  T.translation() = M.topRightCorner<3, 1>();
-  return T;
+  return published_rigid<3>(M, path).T;
 }
 
 }  // namespace verifybench

@@ -16,7 +16,8 @@ using Cloud = std::vector<Eigen::Vector3f>;
 /// (with its point index), or no points at all.
 Cloud read_cloud(const std::string& path);
 
-/// Twelve or sixteen numbers, row-major; the rotation must be orthonormal with det +1 (1e-4).
+/// Twelve or sixteen numbers, row-major; the rotation is checked and projected onto SO(3) by the
+/// rule of core/transform.hpp.
 Rigid<3> read_transform(const std::string& path);
 
 }  // namespace verifybench

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "graph/compatibility_graph.hpp"
 #include "datasets/dump_format.hpp"
@@ -88,6 +89,33 @@ TEST_F(DumpReader, RejectsEmptyAndMissingFiles) {
   fs::remove(dir_ / "corr.txt");
   EXPECT_NE(error().find("corr.txt: missing"), std::string::npos) << error();
   EXPECT_THROW(read_text_dump((dir_ / "nope").string()), InputError);
+}
+
+// Ground truth as datasets print it: |R^T R - I| up to 1e-2 is projected onto SO(3) and recorded;
+// beyond, or a reflection, is refused with the value and the limit.
+TEST_F(DumpReader, GroundTruthToleranceIsOneHundredthAndProjectsOntoSO3) {
+  write("corr.txt", "0 0 0 1 0 0\n1 0 0 2 0 0\n");
+  // R = diag(1 + d, 1, 1): |R^T R - I|_F = 2d + d^2.
+  auto gt_with = [&](double d) {
+    std::ostringstream m;
+    m.precision(17);
+    m << 1 + d << " 0 0 0.5\n0 1 0 0\n0 0 1 0\n0 0 0 1\n";
+    write("GTmat.txt", m.str());
+  };
+  const double d_in = 0.0049;  // residual 0.00982
+  gt_with(d_in);
+  const auto set = std::get<LabeledSet<3>>(read_text_dump(dir_.string()));
+  const Eigen::Matrix3d R = set.truth.T_target_source->linear();
+  EXPECT_NEAR((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(R.determinant(), 1.0, 1e-12);
+  EXPECT_NEAR(R(0, 0), 1.0, 1e-12);  // the nearest rotation to diag(1 + d, 1, 1) is I
+  EXPECT_NEAR(set.truth.rotation_residual, 2 * d_in + d_in * d_in, 1e-12);
+  EXPECT_EQ(set.truth.T_target_source->translation()(0), 0.5);
+  gt_with(0.0051);  // residual 0.01023: over the limit
+  EXPECT_NE(error().find("limit 0.01"), std::string::npos) << error();
+  EXPECT_NE(error().find("GTmat.txt"), std::string::npos) << error();
+  write("GTmat.txt", "-1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n");  // a reflection
+  EXPECT_NE(error().find("det = -1"), std::string::npos) << error();
 }
 
 TEST_F(DumpReader, RejectsMismatchedLabelsAndBadGroundTruth) {
