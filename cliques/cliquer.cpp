@@ -1,6 +1,7 @@
 // Peer: Debian's libcliquer (Ostergard's algorithm, through a C shim), in a killable child.
 #include "cliques/detail/cliquer_shim.h"
-#include "cliques/detail/killable_child.hpp"
+#include "cliques/detail/peer_result.hpp"
+#include "core/detail/killable_child.hpp"
 
 namespace verifybench {
 

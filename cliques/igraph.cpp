@@ -2,7 +2,8 @@
 #include <igraph/igraph.h>
 
 #include "cliques/detail/bbmc.hpp"
-#include "cliques/detail/killable_child.hpp"
+#include "cliques/detail/peer_result.hpp"
+#include "core/detail/killable_child.hpp"
 
 namespace verifybench {
 

@@ -53,7 +53,6 @@ class Open3dRansac : public SolverBase<Open3dRansac> {
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
     open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
-    StopWatch clock;
     const auto source = cloud<Dim>(corr.source);
     const auto target = cloud<Dim>(corr.target);
     reg::CorrespondenceSet given;
@@ -66,18 +65,18 @@ class Open3dRansac : public SolverBase<Open3dRansac> {
       checkers.push_back(edges);
       criteria = reg::RANSACConvergenceCriteria(params.ransac.iterations, params.ransac.confidence);
     }
-    Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
-    if (corr.size() >= 3) {
-      SingleThreaded one;
-      open3d::utility::random::Seed(static_cast<int>(params.seed & 0x7fffffff));
-      const auto r = reg::RegistrationRANSACBasedOnCorrespondence(
-          source, target, given, params.inlier_threshold,
-          reg::TransformationEstimationPointToPoint(false), 3, checkers, criteria);
-      M = r.transformation_;
-    }
-    result.times.search_ms = clock.ms();
-    take_library_answer<Dim>(M, corr, params, "Open3D RegistrationRANSACBasedOnCorrespondence",
-                             result);
+    run_library_peer<Dim>(corr, params, "Open3D RegistrationRANSACBasedOnCorrespondence", [&] {
+      Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+      if (corr.size() >= 3) {
+        SingleThreaded one;
+        open3d::utility::random::Seed(static_cast<int>(params.seed & 0x7fffffff));
+        const auto r = reg::RegistrationRANSACBasedOnCorrespondence(
+            source, target, given, params.inlier_threshold,
+            reg::TransformationEstimationPointToPoint(false), 3, checkers, criteria);
+        M = r.transformation_;
+      }
+      return M;
+    }, result);
     return result;
   }
 

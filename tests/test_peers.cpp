@@ -3,6 +3,8 @@
 // 2D sets go through the z = 0 embedding, whose reflections are refused.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
@@ -50,6 +52,36 @@ TEST(Peers, PclPrerejectiveRecoversDrawnMotionsWithoutOutliers) {
 TEST(Peers, Open3dRansacRecoversDrawnMotions) {
   recovers<3>("open3d-ransac", 0.3);
   recovers<2>("open3d-ransac", 0.3);
+}
+
+// Each peer runs in a child killed at --time-limit: a limit already past comes back at once as
+// time_limit with nothing accepted, and what the library sets process-wide (PCL's prerejective
+// seeds std::rand) does not reach the caller.
+TEST(Peers, HonourTheTimeLimitAndLeaveProcessStateAlone) {
+  register_builtin_solvers();
+  SyntheticParams sp;
+  sp.n = 300;
+  sp.outlier_ratio = 0.5;
+  const auto set = make_synthetic<3>(sp);
+  int ran = 0;
+  for (const char* name : {"pcl-ransac", "pcl-ransac-default", "pcl-prerejective",
+                           "pcl-prerejective-default", "open3d-ransac", "open3d-ransac-default"}) {
+    if (!SolverRegistry::contains(name)) continue;
+    ++ran;
+    SolverParams params;
+    params.time_limit_s = 1e-9;
+    const auto r = SolverRegistry::create(name)->solve(set.corr, params);
+    EXPECT_EQ(r.status, Status::time_limit) << name << ": " << r.message;
+    EXPECT_FALSE(r.accepted) << name;
+    std::srand(42);
+    const int expected = std::rand();
+    std::srand(42);
+    params.time_limit_s = 60;
+    const auto done = SolverRegistry::create(name)->solve(set.corr, params);
+    EXPECT_NE(done.status, Status::time_limit) << name;
+    EXPECT_EQ(std::rand(), expected) << name << " changed std::rand's state";
+  }
+  if (ran == 0) GTEST_SKIP() << "no library peer in this build";
 }
 
 TEST(Peers, AnswersOutOfThePlaneOfA2DSetAreRejections) {

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "core/correspondences.hpp"
+#include "core/detail/killable_child.hpp"
+#include "core/timer.hpp"
 #include "solvers/detail/consensus.hpp"
 
 namespace verifybench {
@@ -54,6 +56,31 @@ void take_library_answer(const Eigen::Matrix4d& M, const Correspondences<Dim>& c
   result.T_target_source = *T;
   result.inliers = consensus_set(corr, *T, params.inlier_threshold);
   decide(result, params, true);
+}
+
+/// Runs `library()` (the library's 4x4 answer) in a forked child killed at --time-limit, so that a
+/// peer honours the limit and what it sets process-wide (PCL's std::srand, OpenMP's thread count)
+/// stays in the child; then takes its answer. Past the limit: the identity, nothing accepted,
+/// status time_limit. The search time includes the fork (about a millisecond).
+template <int Dim, class Library>
+void run_library_peer(const Correspondences<Dim>& corr, const SolverParams& params, const char* who,
+                      Library library, Result<Dim>& result) {
+  StopWatch clock;
+  const auto answer = detail::run_in_child(deadline_after(params.time_limit_s), [&] {
+    const Eigen::Matrix4d M = library();
+    return std::vector<double>(M.data(), M.data() + 16);
+  });
+  result.times.search_ms = clock.ms();
+  if (!answer) {
+    result.T_target_source = Rigid<Dim>::Identity();
+    result.inliers.clear();
+    result.accepted = false;
+    result.status = Status::time_limit;
+    result.message = std::string(who) + " was stopped at the time limit";
+    return;
+  }
+  take_library_answer<Dim>(Eigen::Map<const Eigen::Matrix4d>(answer->data()), corr, params, who,
+                           result);
 }
 
 }  // namespace verifybench

@@ -1,9 +1,8 @@
 #pragma once
-// The peers' harness: neither cliquer nor igraph can be stopped promptly from outside (cliquer asks
-// its time function only between top-level vertices; igraph_largest_cliques does not poll its
-// interruption handler), so each runs in a forked child that is killed at the deadline: a peer
-// past the limit returns no clique, with status time_limit. The fork costs about a millisecond and
-// is part of the peer's measured time.
+// Library peers that cannot be stopped promptly from outside (cliquer asks its time function only
+// between top-level vertices; igraph_largest_cliques does not poll its interruption handler; PCL's
+// and Open3D's RANSACs never read a limit) run in a forked child that is killed at the deadline.
+// The fork costs about a millisecond and is part of the peer's measured time.
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -15,9 +14,9 @@
 #include <cstring>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
-#include "cliques/max_clique.hpp"
 #include "core/timer.hpp"
 
 namespace verifybench::detail {
@@ -34,20 +33,26 @@ inline bool write_all(int fd, const void* data, std::size_t bytes) {
   return true;
 }
 
-/// Runs `compute` in a child process; returns its clique, or nullopt when the deadline passed first
-/// (the child is killed). Throws when the child fails.
+/// Runs `compute` (returning a std::vector of a trivially copyable type) in a forked child and
+/// returns its vector, or nullopt when the deadline passed first (the child is killed). Whatever
+/// the computation sets process-wide (std::srand, OpenMP's thread count) stays in the child.
+/// Throws std::runtime_error when the child fails.
 template <class F>
-std::optional<std::vector<int>> run_in_child(SteadyClock::time_point deadline, F compute) {
+auto run_in_child(SteadyClock::time_point deadline, F compute)
+    -> std::optional<decltype(compute())> {
+  using Vec = decltype(compute());
+  using T = typename Vec::value_type;
+  static_assert(std::is_trivially_copyable_v<T>);
   int fds[2];
-  if (::pipe(fds) != 0) throw std::runtime_error("peer: pipe() failed");
+  if (::pipe(fds) != 0) throw std::runtime_error("isolated run: pipe() failed");
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("peer: fork() failed");
+  if (pid < 0) throw std::runtime_error("isolated run: fork() failed");
   if (pid == 0) {
     ::close(fds[0]);
-    const std::vector<int> clique = compute();
-    const int size = static_cast<int>(clique.size());
+    const Vec out = compute();
+    const long long size = static_cast<long long>(out.size());
     const bool ok = write_all(fds[1], &size, sizeof size) &&
-                    write_all(fds[1], clique.data(), clique.size() * sizeof(int));
+                    (out.empty() || write_all(fds[1], out.data(), out.size() * sizeof(T)));
     ::_exit(ok ? 0 : 1);
   }
   ::close(fds[1]);
@@ -76,29 +81,17 @@ std::optional<std::vector<int>> run_in_child(SteadyClock::time_point deadline, F
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (timed_out) return std::nullopt;
-  int size = -1;
+  long long size = -1;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || bytes.size() < sizeof size) {
-    throw std::runtime_error("peer: the child process failed");
+    throw std::runtime_error("isolated run: the child process failed");
   }
   std::memcpy(&size, bytes.data(), sizeof size);
-  if (size < 0 || bytes.size() != sizeof size + static_cast<std::size_t>(size) * sizeof(int)) {
-    throw std::runtime_error("peer: truncated result from the child process");
+  if (size < 0 || bytes.size() != sizeof size + static_cast<std::size_t>(size) * sizeof(T)) {
+    throw std::runtime_error("isolated run: truncated result from the child process");
   }
-  std::vector<int> clique(static_cast<std::size_t>(size));
-  std::memcpy(clique.data(), bytes.data() + sizeof size, clique.size() * sizeof(int));
-  return clique;
-}
-
-inline CliqueSearchResult peer_result(std::optional<std::vector<int>> clique, int n) {
-  CliqueSearchResult r;
-  r.stopped = !clique.has_value();
-  r.optimal = !r.stopped;
-  if (clique) {
-    r.clique = std::move(*clique);
-    std::sort(r.clique.begin(), r.clique.end());
-  }
-  r.upper_bound = n;
-  return r;
+  Vec out(static_cast<std::size_t>(size));
+  if (size > 0) std::memcpy(out.data(), bytes.data() + sizeof size, out.size() * sizeof(T));
+  return out;
 }
 
 }  // namespace verifybench::detail
