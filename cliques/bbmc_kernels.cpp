@@ -139,10 +139,9 @@ BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vert
   return sub;
 }
 
-// Relabelling scatters one bit per edge or transposes 64 x 64 blocks. Transposing took `doll` on
-// hamming8-4 (41 edges a word of row) from 0.197 to 0.089 ms (perf: relabelling was 41% of it);
-// the 3DMatch dump (6614 vertices, 4.3 edges a word) searched 2-6 ms slower of 60 transposed, so
-// the threshold sits above it.
+// Relabelling scatters one bit per edge or transposes 64 x 64 blocks. Transposing pays on dense
+// rows (hamming8-4, 41 edges a word of row) and loses on sparse ones (the 3DMatch dump, 4.3
+// edges a word), so the threshold sits between (measured in BENCHMARK.md, section 5e).
 constexpr long long kTransposeBitsPerWord = 8;
 
 BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,

@@ -121,8 +121,8 @@ CoreDecomposition detail::core_decomposition(const BitGraph& g, SteadyClock::tim
 namespace {
 
 // The interleaved local search (bbmcx-ls): 100 n visits up front (a few hundred steps), then a
-// tenth of the colouring's words: 5-15% more time where it finds nothing better (johnson16-2-4,
-// p_hat1000-1); 0.05 to 0.5 all prove brock400_4 in 5.5-11 s (BENCHMARK.md, section 5c).
+// tenth of the colouring's words: some more time where it finds nothing better (johnson16-2-4,
+// p_hat1000-1), an early incumbent on brock400_4 (shares measured in BENCHMARK.md, section 5c).
 constexpr long long kLocalInitialVisitsPerVertex = 100;
 constexpr double kLocalShare = 0.1;
 constexpr std::uint64_t kLocalSearchStream = 0x15;
