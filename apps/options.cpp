@@ -1,5 +1,7 @@
 #include "apps/options.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -27,37 +29,53 @@ Options& Options::add(const std::string& name, const std::string& value_name,
 }
 
 void Options::parse(const std::vector<std::string>& args) {
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg == "--help" || arg == "-h") {
-      help_ = true;
-      continue;
-    }
-    if (arg.rfind("--", 0) != 0) {
-      if (positional_name_.empty()) throw UsageError("unexpected argument '" + arg + "'");
-      positional_.push_back(arg);
-      continue;
-    }
-    std::string name = arg.substr(2), value;
-    const auto eq = name.find('=');
-    const bool inline_value = eq != std::string::npos;
-    if (inline_value) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
-    }
+  // CLI11 does the splitting ("--name value", "--name=value", positionals, help); the checks it
+  // words differently come first, so every message names the option as the rest of the tool does.
+  std::map<std::string, int> seen;
+  for (const std::string& arg : args) {
+    if (arg.rfind("--", 0) != 0 || arg == "--help") continue;
+    const std::string name = arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos
+                                                                               : arg.find('=') - 2);
     const auto spec = specs_.find(name);
     if (spec == specs_.end()) throw UsageError("unknown option '--" + name + "' (see --help)");
-    if (values_.count(name)) throw UsageError("option --" + name + " given twice");
-    if (spec->second.value_name.empty()) {
-      if (inline_value) throw UsageError("option --" + name + " takes no value");
-      values_[name] = "1";
-      continue;
+    if (++seen[name] > 1) throw UsageError("option --" + name + " given twice");
+    if (spec->second.value_name.empty() && arg.find('=') != std::string::npos) {
+      throw UsageError("option --" + name + " takes no value");
     }
-    if (!inline_value) {
-      if (i + 1 >= args.size()) throw UsageError("option --" + name + " needs a value");
-      value = args[++i];
+  }
+  CLI::App app;
+  app.set_help_flag();  // --help is ours: it prints the grouped help below
+  app.add_flag("-h,--help", help_);
+  std::map<std::string, std::string> given;
+  std::map<std::string, bool> flags;
+  for (const auto& name : order_) {
+    if (name[0] == '\n') continue;
+    const Spec& spec = specs_.at(name);
+    if (spec.value_name.empty()) {
+      app.add_flag("--" + name, flags[name]);
+    } else {
+      app.add_option("--" + name, given[name])->allow_extra_args(false);
     }
-    values_[name] = value;
+  }
+  if (!positional_name_.empty()) app.add_option(positional_name_, positional_);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ExtrasError&) {
+    const auto extra = app.remaining();
+    throw UsageError("unexpected argument '" + (extra.empty() ? std::string("?") : extra.front()) +
+                     "'");
+  } catch (const CLI::ArgumentMismatch& e) {
+    const std::string what = e.what();  // "--NAME: 1 required TEXT missing"
+    throw UsageError("option " + what.substr(0, what.find(':')) + " needs a value");
+  } catch (const CLI::ParseError& e) {
+    throw UsageError(e.what());
+  }
+  for (const auto& [name, on] : flags) {
+    if (on) values_[name] = "1";
+  }
+  for (const auto& [name, value] : given) {
+    if (app.count("--" + name) > 0) values_[name] = value;
   }
 }
 
@@ -131,6 +149,7 @@ std::vector<std::string> Options::list(const std::string& name) const {
     if (item.empty()) bad(name, t, "has an empty item");
     items.push_back(item);
   }
+  if (!t.empty() && t.back() == ',') bad(name, t, "has an empty item");
   if (items.empty()) bad(name, t, "is empty");
   return items;
 }

@@ -39,6 +39,10 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
   expect_usage_error("frobnicate", "unknown command 'frobnicate'");
   expect_usage_error("sweep --bogus 1 " + kOut, "unknown option '--bogus'");
   expect_usage_error("sweep --solvers clique,nope " + kOut, "unknown solver 'nope'");
+  expect_usage_error("sweep --solvers clique, " + kOut, "--solvers: 'clique,' has an empty item");
+  expect_usage_error("sweep --quiet=1 " + kOut, "option --quiet takes no value");
+  expect_usage_error("sweep --n 5 --n 6 " + kOut, "option --n given twice");
+  expect_usage_error("sweep stray " + kOut, "unexpected argument 'stray'");
   expect_usage_error("sweep --n -5 " + kOut, "--n: '-5' is outside");
   expect_usage_error("sweep --n abc " + kOut, "--n: 'abc' is not an integer");
   expect_usage_error("sweep --outliers 0.5:1.5:0.1 " + kOut, "1.5 is outside [0, 1]");
