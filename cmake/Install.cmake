@@ -11,9 +11,11 @@ endforeach()
 install(FILES ${VERIFYBENCH_BUILD_INCLUDE}/verifybench/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/verifybench)
 install(PROGRAMS reports/plot_report.py reports/summarize.py reports/real_table.py
-                 reports/robustness_table.py
+                 reports/robustness_table.py reports/check_schema.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
 install(FILES reports/report_io.py DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
+install(FILES reports/schema/report.schema.json
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports/schema)
 install(EXPORT verifybenchTargets NAMESPACE verifybench::
         DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/verifybench)
 include(CMakePackageConfigHelpers)

@@ -50,8 +50,22 @@ if $py "$src/reports/real_table.py" "$out/missing.json" 2>"$out/err"; then
 fi
 grep -q "real_table: error: .*missing.json" "$out/err" || { cat "$out/err"; exit 1; }
 # Every script answers --help.
-for s in plot_report summarize robustness_table real_table; do
+for s in plot_report summarize robustness_table real_table check_schema; do
   $py "$src/reports/$s.py" --help > "$out/help"
   grep -q "usage: $s.py" "$out/help" || { echo "$s.py --help"; exit 1; }
 done
+# A dump report: solvers on a small text dump with a known motion (a shift of 1 m along x).
+mkdir -p "$out/dump"
+for i in 0 1 2 3 4 5 6 7 8 9; do echo "$i $((i * i % 7)) $((i % 3)) $((i + 1)) $((i * i % 7)) $((i % 3))"; done > "$out/dump/corr.txt"
+printf '1 0 0 1\n0 1 0 0\n0 0 1 0\n0 0 0 1\n' > "$out/dump/GTmat.txt"
+"$VERIFYBENCH" run --dump "$out/dump" --solvers clique,ransac --trials 2 --quiet --out "$out/run.json" >/dev/null
+$py "$src/reports/plot_report.py" "$out/run.json" --out-dir "$out/plots" >/dev/null
+is_png "$out/plots/run_dump.png"; is_pdf "$out/plots/run_dump.pdf"
+# Every kind of report the CLI writes conforms to the checked-in schema, and a broken one does not.
+$py "$src/reports/check_schema.py" "$out/r.json" "$out/rep.json" "$out/d.json" "$out/run.json" >"$out/schema"
+$py -c "import json, sys; d = json.load(open(sys.argv[1])); d['results'][0]['status'] = 'fine'; \
+json.dump(d, open(sys.argv[2], 'w'))" "$out/run.json" "$out/broken.json"
+if $py "$src/reports/check_schema.py" "$out/broken.json" >"$out/schema"; then
+  echo "a report with status 'fine' passed the schema"; exit 1
+fi
 echo "plot_report: ok"
