@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "core/registry.hpp"
 #include "cliques/detail/bbmc.hpp"
@@ -258,8 +259,7 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
   SearchBudget greedy_budget;
   std::vector<int> best = detail::greedy_clique(g, dec.cores(), deadline, greedy_budget.stopped);
   if (greedy_budget.stopped) return finish(std::move(best), true, greedy_budget, upper);
-  const int threads = std::max(
-      1, p.threads > 0 ? p.threads : static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = resolve_threads(p.threads);
 
   std::atomic<int> next{0}, best_size{static_cast<int>(best.size())};
   std::atomic<bool> stop{false};
@@ -287,13 +287,7 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
       }
     }
   };
-  if (threads == 1) {
-    worker(budgets[0]);
-  } else {
-    std::vector<std::thread> pool;
-    for (auto& b : budgets) pool.emplace_back(worker, std::ref(b));
-    for (auto& t : pool) t.join();
-  }
+  WorkerPool(threads).parallel_for(threads, [&](int t) { worker(budgets[static_cast<std::size_t>(t)]); });
   SearchBudget total = budgets[0];
   for (std::size_t t = 1; t < budgets.size(); ++t) total.nodes += budgets[t].nodes;
   total.stopped = stop;

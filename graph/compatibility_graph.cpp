@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "core/detail/multiversion.hpp"
+#include "core/parallel.hpp"
 
 namespace verifybench {
 
@@ -173,20 +174,13 @@ BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const Graph
   }
   BitGraph g(static_cast<int>(n));
   const FloatColumns<Dim> fc(corr, params.eps);
-  int threads =
-      params.threads > 0 ? params.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::max(1, std::min(threads, static_cast<int>(n / 256) + 1));
-  if (threads == 1) {
-    fill_upper_rows<Dim>(g, corr, fc, params.eps, 0, 1);
-  } else {
-    // Rows interleaved across workers: each writes only its own rows, so the graph is the same for
-    // any thread count.
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) {
-      pool.emplace_back([&, t] { fill_upper_rows<Dim>(g, corr, fc, params.eps, t, threads); });
-    }
-    for (auto& th : pool) th.join();
-  }
+  const int threads =
+      std::max(1, std::min(resolve_threads(params.threads), static_cast<int>(n / 256) + 1));
+  // Rows interleaved across workers: each writes only its own rows, so the graph is the same for
+  // any thread count.
+  WorkerPool workers(threads);
+  workers.parallel_for(threads,
+                       [&](int t) { fill_upper_rows<Dim>(g, corr, fc, params.eps, t, threads); });
   mirror(g);
   return g;
 }

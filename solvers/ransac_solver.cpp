@@ -16,9 +16,9 @@
 #include <random>
 
 #ifdef _OPENMP
-#include <omp.h>
 #endif
 
+#include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "core/rigid_fit.hpp"
 #include "solvers/detail/consensus.hpp"
@@ -123,8 +123,8 @@ class Engine {
   Result<Dim> run() {
     Result<Dim> result;
     const auto deadline = deadline_after(params_.time_limit_s);
-    const int threads = params_.threads == 0 ? std::max(1, omp_threads()) : params_.threads;
-    const int batch = threads == 1 ? 1 : 256;
+    WorkerPool workers(params_.threads);  // passive waiting between batches
+    const int batch = workers.size() == 1 ? 1 : 256;
     std::vector<Hypothesis> hyps(static_cast<std::size_t>(batch));
     long long needed = params_.ransac.iterations;
     bool finished = true;
@@ -142,8 +142,8 @@ class Engine {
       if (count == 1) {
         evaluate(hyps[0], bound);
       } else {
-#pragma omp parallel for schedule(static) num_threads(threads)
-        for (int h = 0; h < count; ++h) evaluate(hyps[static_cast<std::size_t>(h)], bound);
+        workers.parallel_for(count,
+                             [&](int h) { evaluate(hyps[static_cast<std::size_t>(h)], bound); });
       }
       for (int h = 0; h < count && t < needed; ++h, ++t) {
         ++result.counters.iterations;
@@ -191,13 +191,6 @@ class Engine {
     Score score = kNone;
   };
 
-  static int omp_threads() {
-#ifdef _OPENMP
-    return omp_get_max_threads();
-#else
-    return 1;
-#endif
-  }
 
   bool has_best() const { return best_score_ != kNone; }
   static bool better(Score a, Score b) { return a > b; }
