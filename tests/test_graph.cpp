@@ -1,6 +1,10 @@
 // The correspondence graph against its definition, Eq. (1), evaluated pair by pair.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <stdexcept>
+
+#include "core/parallel.hpp"
 #include "graph/compatibility_graph.hpp"
 #include "generators/synthetic.hpp"
 
@@ -28,6 +32,36 @@ void check_against_definition(std::uint64_t seed) {
     }
   }
   EXPECT_EQ(g.edge_count(), edges);
+}
+
+// The pool behind every parallel stage: each index runs exactly once, in the block of its worker,
+// for any count and thread count, over many jobs on one pool; an exception reaches the caller.
+TEST(WorkerPool, EveryIndexOnceInFixedBlocksAndErrorsReachTheCaller) {
+  for (int threads : {1, 2, 3, 5}) {
+    WorkerPool pool(threads);
+    ASSERT_EQ(pool.size(), threads);
+    for (int count : {0, 1, 2, 7, 64, 1000}) {
+      std::vector<std::atomic<int>> calls(static_cast<std::size_t>(count));
+      std::vector<std::thread::id> who(static_cast<std::size_t>(count));
+      pool.parallel_for(count, [&](int i) {
+        ++calls[static_cast<std::size_t>(i)];
+        who[static_cast<std::size_t>(i)] = std::this_thread::get_id();
+      });
+      for (int i = 0; i < count; ++i) EXPECT_EQ(calls[static_cast<std::size_t>(i)], 1) << i;
+      // Block k of `threads` contiguous blocks is one worker's: ids change at most threads - 1 times.
+      int changes = 0;
+      for (int i = 1; i < count; ++i) changes += who[static_cast<std::size_t>(i)] != who[static_cast<std::size_t>(i - 1)];
+      EXPECT_LE(changes, threads - 1) << threads << " threads, " << count;
+    }
+    EXPECT_THROW(pool.parallel_for(10, [](int i) {
+      if (i == 7) throw std::runtime_error("seven");
+    }), std::runtime_error);
+    std::atomic<int> after{0};
+    pool.parallel_for(10, [&](int) { ++after; });  // still usable after an error
+    EXPECT_EQ(after, 10);
+  }
+  EXPECT_EQ(resolve_threads(3), 3);
+  EXPECT_GE(resolve_threads(0), 1);
 }
 
 TEST(CompatibilityGraph, MatchesDefinition2D) { check_against_definition<2>(1); }
