@@ -39,9 +39,13 @@ int cmd_extract(const std::vector<std::string>& args) {
   }
   ExtractParams p;
   p.pipeline = o.text("pipeline");
-  if (p.pipeline != "3d" && p.pipeline != "2d") {
-    throw UsageError("--pipeline: '" + p.pipeline + "' is not 3d or 2d");
+  std::string names;
+  bool known = false;
+  for (const auto& info : list_pipelines()) {
+    names += (names.empty() ? "" : " or ") + info.name;
+    known = known || info.name == p.pipeline;
   }
+  if (!known) throw UsageError("--pipeline: '" + p.pipeline + "' is not " + names);
   p.p3.voxel = o.real("voxel", 1e-6, 1e6);
   p.p3.salient_radius = o.real("iss-salient-radius", 1e-6, 1e6);
   p.p3.non_max_radius = o.real("iss-non-max-radius", 1e-6, 1e6);

@@ -1,8 +1,10 @@
 #include "frontend/extract.hpp"
 
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 
+#include "core/registry.hpp"
 #include "core/timer.hpp"
 
 namespace verifybench {
@@ -45,13 +47,50 @@ LabeledSet<Dim> assemble(const Features& s, const Features& t,
   return set;
 }
 
+json provenance_3d(const ExtractParams& params) {
+  const auto& p3 = params.p3;
+  return {{"name", "3d: voxel grid, ISS, normals, SHOT, B-SHOT"},
+          {"voxel", p3.voxel},
+          {"iss_salient_radius", p3.salient_radius},
+          {"iss_non_max_radius", p3.non_max_radius},
+          {"iss_gamma21", p3.gamma21},
+          {"iss_gamma32", p3.gamma32},
+          {"iss_min_neighbors", p3.min_neighbors},
+          {"normal_radius", p3.normal_radius},
+          {"shot_radius", p3.shot_radius}};
+}
+
+json provenance_2d(const ExtractParams& params) {
+  const auto& p2 = params.p2;
+  return {{"name", "2d: bird's-eye-view density image, ORB"},
+          {"cell", p2.bev.cell},
+          {"min_fraction", p2.bev.min_fraction},
+          {"range", p2.bev.range},
+          {"orb_features", p2.orb_features}};
+}
+
+const Registry<PipelineInfo>& pipelines() {
+  static Registry<PipelineInfo> registry("pipeline", Registry<PipelineInfo>::Order::as_added);
+  static std::once_flag once;
+  std::call_once(once, [] {
+    registry.add({"3d", "ISS keypoints + B-SHOT (PCL)",
+                  [](const Cloud& c, const ExtractParams& p) { return features_3d(c, p.p3); },
+                  provenance_3d});
+    registry.add({"2d", "bird's-eye-view density image + ORB (OpenCV)",
+                  [](const Cloud& c, const ExtractParams& p) { return features_2d(c, p.p2); },
+                  provenance_2d});
+  });
+  return registry;
+}
+
 }  // namespace
 
+std::vector<PipelineInfo> list_pipelines() { return pipelines().list(); }
+
 Features extract_features(const Cloud& cloud, const ExtractParams& params) {
-  if (params.pipeline == "3d") return features_3d(cloud, params.p3);
-  if (params.pipeline == "2d") return features_2d(cloud, params.p2);
-  throw std::invalid_argument("pipeline '" + params.pipeline + "' is unknown; expected 3d or 2d");
+  return pipelines().get(params.pipeline).features(cloud, params);
 }
+
 
 Dump match_features(const Features& source, const Features& target,
                     const std::optional<Rigid<3>>& T_target_source, const ExtractParams& params) {
@@ -83,23 +122,7 @@ Dump match_features(const Features& source, const Features& target,
     dump.set = assemble<2>(source, target, matches, T2, params.label_threshold);
   }
   if (T_target_source) dump.label_threshold = params.label_threshold;
-  const auto& p3 = params.p3;
-  const auto& p2 = params.p2;
-  json pipeline = params.pipeline == "3d"
-                      ? json{{"name", "3d: voxel grid, ISS, normals, SHOT, B-SHOT"},
-                             {"voxel", p3.voxel},
-                             {"iss_salient_radius", p3.salient_radius},
-                             {"iss_non_max_radius", p3.non_max_radius},
-                             {"iss_gamma21", p3.gamma21},
-                             {"iss_gamma32", p3.gamma32},
-                             {"iss_min_neighbors", p3.min_neighbors},
-                             {"normal_radius", p3.normal_radius},
-                             {"shot_radius", p3.shot_radius}}
-                      : json{{"name", "2d: bird's-eye-view density image, ORB"},
-                             {"cell", p2.bev.cell},
-                             {"min_fraction", p2.bev.min_fraction},
-                             {"range", p2.bev.range},
-                             {"orb_features", p2.orb_features}};
+  const json pipeline = pipelines().get(params.pipeline).provenance(params);
   dump.provenance = {
       {"tool", "verifybench extract"},
       {"pipeline", pipeline},

@@ -4,7 +4,9 @@
 // matched to its nearest target descriptor by Hamming distance through an HBST built
 // incrementally over the target's descriptors; a match is kept within max_hamming bits. Labels,
 // when the ground truth is given: 1 when ||T m - q|| < label_threshold.
+#include <functional>
 #include <optional>
+#include <vector>
 #include <string>
 
 #include "frontend/features.hpp"
@@ -23,7 +25,17 @@ struct ExtractParams {
   double label_threshold = 1.0;  ///< [m]; the paper's eps in 3D
 };
 
-/// One scan's features, by pipeline.
+/// A front-end pipeline: one scan in, keypoints and binary descriptors out.
+struct PipelineInfo {
+  std::string name;  ///< "3d", "2d"
+  std::string description;
+  std::function<Features(const Cloud&, const ExtractParams&)> features;
+  std::function<nlohmann::json(const ExtractParams&)> provenance;  ///< its parameters, for dumps
+};
+/// The pipelines, in a stable order.
+std::vector<PipelineInfo> list_pipelines();
+
+/// One scan's features, by pipeline; UnknownName for an unknown one.
 Features extract_features(const Cloud& cloud, const ExtractParams& params);
 
 /// Source features matched into target features; T (3D, for the 2D pipeline reduced to its yaw
