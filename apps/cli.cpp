@@ -8,7 +8,8 @@
 namespace verifybench::cli {
 
 void add_solver_options(Options& o) {
-  o.group("solvers").add("solvers", "A,B", "clique,ransac", "solvers to run (see `verifybench list`)")
+  o.group("solvers")
+      .add("solvers", "A,B", "clique,ransac", "solvers to run (see `verifybench list`)")
       .add("eps", "M", "0.1", "pair length tolerance of the correspondence graph, Eq. (1) [m]")
       .add("inlier-threshold", "M", "", "consensus residual threshold [m] (default: eps)")
       .add("min-inliers", "K", "0",

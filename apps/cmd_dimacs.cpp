@@ -22,13 +22,11 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
       .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
       .add("out", "FILE.json", "", "report path (required; written atomically)")
       .add("quiet", "", "", "no progress lines");
-  o.parse(args);
-  if (o.help_requested()) {
-    std::cout << "usage: verifybench dimacs FILE.clq... [options] --out FILE.json\n"
-                 "Known clique numbers are taken from MANIFEST.tsv beside each file when present.\n"
-              << o.help();
+  if (o.parse_or_help(
+          args,
+          "usage: verifybench dimacs FILE.clq... [options] --out FILE.json\n"
+          "Known clique numbers are taken from MANIFEST.tsv beside each file when present.\n"))
     return 0;
-  }
   if (o.positional().empty()) throw UsageError("no DIMACS file given");
   const auto names = o.list("algorithms");
   for (const auto& n : names) CliqueAlgorithms::get(n);  // throws with the known names
@@ -54,10 +52,10 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
       if (it != omega.end()) known = it->second;
     }
     for (CliqueRecord& r : run_clique_algorithms(g, file, known, names, params)) {
-      progress.advance(1, path.filename().string() + " " + r.algorithm + " omega=" +
-                              std::to_string(r.omega) + " known=" +
-                              (known ? std::to_string(*known) : "-") + " " + r.status + " " +
-                              std::to_string(r.time_ms) + " ms");
+      progress.advance(1, path.filename().string() + " " + r.algorithm +
+                              " omega=" + std::to_string(r.omega) +
+                              " known=" + (known ? std::to_string(*known) : "-") + " " + r.status +
+                              " " + std::to_string(r.time_ms) + " ms");
       rows.push_back(std::move(r));
     }
   }

@@ -31,12 +31,9 @@ int cmd_extract(const std::vector<std::string>& args) {
       .add("hbst-leaf", "K", "64", "HBST: most descriptors per leaf")
       .add("label-threshold", "M", "1", "label a match inlier when ||T m - q|| is under this")
       .add("out", "DIR", "", "dump folder to create (required; must not exist)");
-  o.parse(args);
-  if (o.help_requested()) {
-    std::cout << "usage: verifybench extract --source CLOUD --target CLOUD [--gt FILE] --out DIR\n"
-              << o.help();
+  if (o.parse_or_help(
+          args, "usage: verifybench extract --source CLOUD --target CLOUD [--gt FILE] --out DIR\n"))
     return 0;
-  }
   ExtractParams p;
   p.pipeline = o.text("pipeline");
   std::string names;

@@ -10,11 +10,7 @@ namespace verifybench {
 
 int cmd_list(const std::vector<std::string>& args) {
   Options o;
-  o.parse(args);
-  if (o.help_requested()) {
-    std::cout << "usage: verifybench list\n" << o.help();
-    return 0;
-  }
+  if (o.parse_or_help(args, "usage: verifybench list\n")) return 0;
   std::printf("solvers (sweep, run --solvers):\n");
   for (const auto& info : SolverRegistry::list()) {
     std::printf("  %-18s %s\n", info.name.c_str(), info.description.c_str());

@@ -17,11 +17,8 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   cli::add_solver_options(o);
   o.group("dump").add("trials", "K", "1", "repeat each solver K times (timing statistics)");
   cli::add_prior_options(o, "the set (it needs a ground truth)");
-  o.parse(args);
-  if (o.help_requested()) {
-    std::cout << "usage: verifybench run --dump DIR [options] --out FILE.json\n" << o.help();
+  if (o.parse_or_help(args, "usage: verifybench run --dump DIR [options] --out FILE.json\n"))
     return 0;
-  }
   const std::string dir = o.required("dump");
   const auto names = cli::solver_names(o);
   const SolverParams params = cli::solver_params(o);
@@ -36,7 +33,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
         if (prior_rot > 0.0) {
           if (!s.truth.T_target_source) {
             throw UsageError("--prior-rot-deg: " + dir +
-                                 " has no ground truth to draw a prior around");
+                             " has no ground truth to draw a prior around");
           }
           add_pose_prior(s, prior_rot, prior_trans, params.seed);
         }
@@ -53,7 +50,8 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
       {"prior_sigma_rot_deg", prior_rot * 180.0 / M_PI},
       {"prior_sigma_trans", prior_trans},
       {"solvers", names},
-      {"label_threshold", dump.label_threshold ? nlohmann::json(*dump.label_threshold) : nlohmann::json(nullptr)},
+      {"label_threshold",
+       dump.label_threshold ? nlohmann::json(*dump.label_threshold) : nlohmann::json(nullptr)},
       {"dump_provenance", dump.provenance},
       // |R^T R - I| of the ground truth as the dump published it (projected onto SO(n) for use).
       {"ground_truth_rotation_residual",

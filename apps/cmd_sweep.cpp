@@ -32,7 +32,8 @@ void check_generator(const std::string& kind, const std::vector<int>& dims) {
 int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
   Options o;
   cli::add_solver_options(o);
-  o.group("synthetic sets").add("dim", "D", "3", "dimension: 2, 3 or 2,3")
+  o.group("synthetic sets")
+      .add("dim", "D", "3", "dimension: 2, 3 or 2,3")
       .add("n", "N", "500", "correspondences per set")
       .add("outliers", "RANGE", "0.5:0.99:0.05",
            "outlier ratios: start:stop:step (stop included) or a,b,c")
@@ -50,11 +51,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
       .add("score-separation", "D", "1",
            "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none");
   cli::add_prior_options(o, "each set");
-  o.parse(args);
-  if (o.help_requested()) {
-    std::cout << "usage: verifybench sweep [options] --out FILE.json\n" << o.help();
-    return 0;
-  }
+  if (o.parse_or_help(args, "usage: verifybench sweep [options] --out FILE.json\n")) return 0;
   SweepConfig c;
   c.solvers = cli::solver_names(o);
   c.dims.clear();
@@ -105,8 +102,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
                          {"solvers", c.solvers}};
   SweepProgress point_done;
   if (!o.flag("quiet")) point_done = cli::print_point;
-  Progress progress("sweep", static_cast<long long>(c.dims.size() * c.outlier_ratios.size()) *
-                                 c.trials,
+  Progress progress("sweep",
+                    static_cast<long long>(c.dims.size() * c.outlier_ratios.size()) * c.trials,
                     !o.flag("quiet"));
   const auto rows = run_sweep(c, point_done, [&] { progress.advance(); });
   return cli::finish(out, parameters, rows, argv, c.seed, cli::describe_error);

@@ -1,17 +1,18 @@
 #include "apps/options.hpp"
 
 #include <CLI/CLI.hpp>
-
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
 
 namespace verifybench {
 
 double parse_real(const std::string& what, const std::string& text) {
   const ParsedReal v = parse_real_token(text);
-  if (v.error != NumberError::none) throw UsageError(what + ": '" + text + "' is not a finite number");
+  if (v.error != NumberError::none)
+    throw UsageError(what + ": '" + text + "' is not a finite number");
   return v.value;
 }
 
@@ -34,8 +35,8 @@ void Options::parse(const std::vector<std::string>& args) {
   std::map<std::string, int> seen;
   for (const std::string& arg : args) {
     if (arg.rfind("--", 0) != 0 || arg == "--help") continue;
-    const std::string name = arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos
-                                                                               : arg.find('=') - 2);
+    const std::string name =
+        arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos : arg.find('=') - 2);
     const auto spec = specs_.find(name);
     if (spec == specs_.end()) throw UsageError("unknown option '--" + name + "' (see --help)");
     if (++seen[name] > 1) throw UsageError("option --" + name + " given twice");
@@ -77,6 +78,12 @@ void Options::parse(const std::vector<std::string>& args) {
   for (const auto& [name, value] : given) {
     if (app.count("--" + name) > 0) values_[name] = value;
   }
+}
+
+bool Options::parse_or_help(const std::vector<std::string>& args, const std::string& usage) {
+  parse(args);
+  if (help_) std::cout << usage << help();
+  return help_;
 }
 
 std::string Options::help() const {

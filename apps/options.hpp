@@ -31,6 +31,8 @@ class Options {
   /// argument.
   void parse(const std::vector<std::string>& args);
   const std::vector<std::string>& positional() const { return positional_; }
+  /// parse(); then, when --help was given, prints `usage` and the options and returns true.
+  bool parse_or_help(const std::vector<std::string>& args, const std::string& usage);
   std::string help() const;
   bool help_requested() const { return help_; }
 

@@ -5,10 +5,10 @@
 
 #include <filesystem>
 
-#include "graph/compatibility_graph.hpp"
+#include "cliques/max_clique.hpp"
 #include "datasets/text_dump.hpp"
 #include "generators/synthetic.hpp"
-#include "cliques/max_clique.hpp"
+#include "graph/compatibility_graph.hpp"
 
 namespace vb = verifybench;
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "datasets/dimacs.hpp"
 #include "cliques/detail/cliquer_shim.h"
 #include "cliques/max_clique.hpp"
+#include "datasets/dimacs.hpp"
 
 namespace vb = verifybench;
 

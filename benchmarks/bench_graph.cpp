@@ -1,8 +1,8 @@
 // Correspondence graph construction, Eq. (1): n^2/2 pair tests. Reports pair tests per second.
 #include <benchmark/benchmark.h>
 
-#include "graph/compatibility_graph.hpp"
 #include "generators/synthetic.hpp"
+#include "graph/compatibility_graph.hpp"
 
 namespace vb = verifybench;
 

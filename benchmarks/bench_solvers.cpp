@@ -1,8 +1,8 @@
 // Each registered solver on synthetic 3D sets: args are n and the outlier ratio in percent.
 #include <benchmark/benchmark.h>
 
-#include "harness/builtin.hpp"
 #include "generators/synthetic.hpp"
+#include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
 
 namespace vb = verifybench;

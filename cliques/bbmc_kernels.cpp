@@ -3,8 +3,8 @@
 // subgraph is the concatenation of pext(row(member k)[w], mask[w]) over the mask's words.
 #include <cstring>
 
-#include "core/detail/multiversion.hpp"
 #include "cliques/detail/bbmc.hpp"
+#include "core/detail/multiversion.hpp"
 
 namespace verifybench::detail {
 

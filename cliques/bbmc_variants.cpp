@@ -8,11 +8,11 @@
 #include <stdexcept>
 #include <thread>
 
+#include "cliques/detail/bbmc.hpp"
+#include "cliques/max_clique.hpp"
 #include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "core/registry.hpp"
-#include "cliques/detail/bbmc.hpp"
-#include "cliques/max_clique.hpp"
 
 namespace verifybench {
 
@@ -287,7 +287,8 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
       }
     }
   };
-  WorkerPool(threads).parallel_for(threads, [&](int t) { worker(budgets[static_cast<std::size_t>(t)]); });
+  WorkerPool(threads).parallel_for(threads,
+                                   [&](int t) { worker(budgets[static_cast<std::size_t>(t)]); });
   SearchBudget total = budgets[0];
   for (std::size_t t = 1; t < budgets.size(); ++t) total.nodes += budgets[t].nodes;
   total.stopped = stop;
@@ -346,8 +347,8 @@ const CliqueAlgorithmInfo& CliqueAlgorithms::get(const std::string& name) {
 
 std::vector<CliqueAlgorithmInfo> CliqueAlgorithms::list() { return algorithms().list(); }
 
-void register_cliquer();  // cliquer.cpp
-void register_igraph();   // igraph.cpp
+void register_cliquer();                                                      // cliquer.cpp
+void register_igraph();                                                       // igraph.cpp
 CliqueSearchResult run_doll(const BitGraph& g, const CliqueSearchParams& p);  // doll.cpp
 
 void register_clique_algorithms() {

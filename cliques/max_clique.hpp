@@ -13,7 +13,8 @@
 //   doll        Ostergard's Russian doll search (cliquer's algorithm) on bitsets; exact
 //               (doll.cpp)
 //   greedy      the greedy clique alone: no optimality proof (to show what exactness buys)
-//   cliquer, igraph  peers from Debian's libcliquer and libigraph (cliquer.cpp, igraph.cpp), registered when built
+//   cliquer, igraph  peers from Debian's libcliquer and libigraph (cliquer.cpp, igraph.cpp),
+//   registered when built
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -82,9 +83,9 @@ bool for_each_maximal_clique(const BitGraph& g, const MaximalCliqueParams& param
 /// swaps guided by vertex penalties, restarts from the last vertex added. No optimality proof; a
 /// lower bound for the exact searches. Deterministic for a given seed.
 struct LocalSearchParams {
-  long long max_steps = 100000;  ///< additions, swaps and restarts in all
+  long long max_steps = 100000;                  ///< additions, swaps and restarts in all
   int target = std::numeric_limits<int>::max();  ///< stop once a clique this large is found
-  int penalty_delay = 2;         ///< cycles between penalty decreases (1 = no penalties)
+  int penalty_delay = 2;  ///< cycles between penalty decreases (1 = no penalties)
   std::uint64_t seed = 1;
   double time_limit_s = std::numeric_limits<double>::infinity();
 };

@@ -1,8 +1,8 @@
 #include "core/errors.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <cctype>
 #include <cstdlib>
 
 namespace verifybench {

@@ -33,7 +33,7 @@ struct ParsedReal {
   NumberError error = NumberError::not_a_number;
 };
 ParsedReal parse_real_token(std::string_view token);
-std::optional<long long> parse_integer_token(std::string_view token);   ///< base 10, signed
+std::optional<long long> parse_integer_token(std::string_view token);  ///< base 10, signed
 std::optional<unsigned long long> parse_unsigned_token(std::string_view token);  ///< no sign
 
 }  // namespace verifybench

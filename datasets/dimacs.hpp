@@ -6,8 +6,8 @@
 #include <map>
 #include <string>
 
-#include "graph/bitgraph.hpp"
 #include "core/errors.hpp"
+#include "graph/bitgraph.hpp"
 
 namespace verifybench {
 

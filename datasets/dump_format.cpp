@@ -1,7 +1,5 @@
 #include "datasets/dump_format.hpp"
 
-#include "core/transform.hpp"
-
 #include <unistd.h>
 
 #include <array>
@@ -10,6 +8,8 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+
+#include "core/transform.hpp"
 
 namespace verifybench {
 

@@ -1,7 +1,5 @@
 #include "datasets/text_dump.hpp"
 
-#include "core/transform.hpp"
-
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -9,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 #include <vector>
+
+#include "core/transform.hpp"
 
 namespace verifybench {
 

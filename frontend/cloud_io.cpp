@@ -1,7 +1,5 @@
 #include "frontend/cloud_io.hpp"
 
-#include "core/transform.hpp"
-
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -13,6 +11,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/transform.hpp"
 
 namespace verifybench {
 

@@ -91,7 +91,6 @@ Features extract_features(const Cloud& cloud, const ExtractParams& params) {
   return pipelines().get(params.pipeline).features(cloud, params);
 }
 
-
 Dump match_features(const Features& source, const Features& target,
                     const std::optional<Rigid<3>>& T_target_source, const ExtractParams& params) {
   if (params.max_hamming < 0 || !(params.label_threshold > 0.0)) {

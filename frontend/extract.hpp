@@ -6,12 +6,12 @@
 // when the ground truth is given: 1 when ||T m - q|| < label_threshold.
 #include <functional>
 #include <optional>
-#include <vector>
 #include <string>
+#include <vector>
 
+#include "datasets/dump_format.hpp"
 #include "frontend/features.hpp"
 #include "frontend/hbst.hpp"
-#include "datasets/dump_format.hpp"
 
 namespace verifybench {
 

@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "frontend/features.hpp"
 #include "core/timer.hpp"
+#include "frontend/features.hpp"
 
 namespace verifybench {
 

@@ -11,9 +11,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/timer.hpp"
 #include "frontend/bshot.hpp"
 #include "frontend/features.hpp"
-#include "core/timer.hpp"
 
 namespace verifybench {
 

@@ -4,8 +4,8 @@
 // i.e. the pair keeps its length under the motion, as any two inliers of one rigid motion do.
 #include <cstddef>
 
-#include "graph/bitgraph.hpp"
 #include "core/correspondences.hpp"
+#include "graph/bitgraph.hpp"
 
 namespace verifybench {
 

@@ -4,9 +4,9 @@
 
 #include "core/metrics.hpp"
 #include "core/random.hpp"
+#include "core/timer.hpp"
 #include "generators/synthetic.hpp"
 #include "solvers/registry.hpp"
-#include "core/timer.hpp"
 
 namespace verifybench {
 

@@ -2,10 +2,9 @@
 // The harness: runs solvers on correspondence sets and turns each outcome into a report row, with
 // metrics from core. Used by the CLI, the tests and the benchmarks alike.
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <optional>
 
 #include "cliques/max_clique.hpp"
 #include "core/correspondences.hpp"

@@ -14,10 +14,10 @@
 #include <open3d/utility/Logging.h>
 #include <open3d/utility/Random.h>
 
-#include "solvers/detail/consensus.hpp"
-#include "peers/detail/embed.hpp"
-#include "solvers/registry.hpp"
 #include "core/timer.hpp"
+#include "peers/detail/embed.hpp"
+#include "solvers/detail/consensus.hpp"
+#include "solvers/registry.hpp"
 
 namespace verifybench {
 
@@ -65,18 +65,21 @@ class Open3dRansac : public SolverBase<Open3dRansac> {
       checkers.push_back(edges);
       criteria = reg::RANSACConvergenceCriteria(params.ransac.iterations, params.ransac.confidence);
     }
-    run_library_peer<Dim>(corr, params, "Open3D RegistrationRANSACBasedOnCorrespondence", [&] {
-      Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
-      if (corr.size() >= 3) {
-        SingleThreaded one;
-        open3d::utility::random::Seed(static_cast<int>(params.seed & 0x7fffffff));
-        const auto r = reg::RegistrationRANSACBasedOnCorrespondence(
-            source, target, given, params.inlier_threshold,
-            reg::TransformationEstimationPointToPoint(false), 3, checkers, criteria);
-        M = r.transformation_;
-      }
-      return M;
-    }, result);
+    run_library_peer<Dim>(
+        corr, params, "Open3D RegistrationRANSACBasedOnCorrespondence",
+        [&] {
+          Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+          if (corr.size() >= 3) {
+            SingleThreaded one;
+            open3d::utility::random::Seed(static_cast<int>(params.seed & 0x7fffffff));
+            const auto r = reg::RegistrationRANSACBasedOnCorrespondence(
+                source, target, given, params.inlier_threshold,
+                reg::TransformationEstimationPointToPoint(false), 3, checkers, criteria);
+            M = r.transformation_;
+          }
+          return M;
+        },
+        result);
     return result;
   }
 

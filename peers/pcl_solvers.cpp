@@ -28,10 +28,10 @@
 #include <algorithm>
 #include <cstdlib>
 
-#include "solvers/detail/consensus.hpp"
-#include "peers/detail/embed.hpp"
-#include "solvers/registry.hpp"
 #include "core/timer.hpp"
+#include "peers/detail/embed.hpp"
+#include "solvers/detail/consensus.hpp"
+#include "solvers/registry.hpp"
 
 namespace verifybench {
 
@@ -58,21 +58,24 @@ class PclRansac : public SolverBase<PclRansac> {
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    run_library_peer<Dim>(corr, params, "PCL CorrespondenceRejectorSampleConsensus", [&] {
-      pcl::Correspondences given;
-      for (int i = 0; i < static_cast<int>(corr.size()); ++i) given.emplace_back(i, i, 0.0f);
-      pcl::registration::CorrespondenceRejectorSampleConsensus<pcl::PointXYZ> rejector;
-      rejector.setInputSource(cloud<Dim>(corr.source));
-      rejector.setInputTarget(cloud<Dim>(corr.target));
-      if (!defaults_) {
-        rejector.setInlierThreshold(params.inlier_threshold);
-        rejector.setMaximumIterations(params.ransac.iterations);
-        rejector.setRefineModel(true);
-      }
-      pcl::Correspondences kept;
-      if (corr.size() >= 3) rejector.getRemainingCorrespondences(given, kept);
-      return Eigen::Matrix4d(rejector.getBestTransformation().template cast<double>());
-    }, result);
+    run_library_peer<Dim>(
+        corr, params, "PCL CorrespondenceRejectorSampleConsensus",
+        [&] {
+          pcl::Correspondences given;
+          for (int i = 0; i < static_cast<int>(corr.size()); ++i) given.emplace_back(i, i, 0.0f);
+          pcl::registration::CorrespondenceRejectorSampleConsensus<pcl::PointXYZ> rejector;
+          rejector.setInputSource(cloud<Dim>(corr.source));
+          rejector.setInputTarget(cloud<Dim>(corr.target));
+          if (!defaults_) {
+            rejector.setInlierThreshold(params.inlier_threshold);
+            rejector.setMaximumIterations(params.ransac.iterations);
+            rejector.setRefineModel(true);
+          }
+          pcl::Correspondences kept;
+          if (corr.size() >= 3) rejector.getRemainingCorrespondences(given, kept);
+          return Eigen::Matrix4d(rejector.getBestTransformation().template cast<double>());
+        },
+        result);
     return result;
   }
 
@@ -89,41 +92,47 @@ class PclPrerejective : public SolverBase<PclPrerejective> {
     using Feature = pcl::FPFHSignature33;  // index in bin 0: nearest feature = the given match
     Result<Dim> result;
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    run_library_peer<Dim>(corr, params, "PCL SampleConsensusPrerejective", [&] {
-      const auto n = static_cast<std::size_t>(corr.size());
-      pcl::PointCloud<Feature>::Ptr features(new pcl::PointCloud<Feature>);
-      features->resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        std::fill(std::begin((*features)[i].histogram), std::end((*features)[i].histogram), 0.0f);
-        (*features)[i].histogram[0] = static_cast<float>(i);
-      }
-      pcl::SampleConsensusPrerejective<pcl::PointXYZ, pcl::PointXYZ, Feature> align;
-      align.setInputSource(cloud<Dim>(corr.source));
-      align.setSourceFeatures(features);
-      align.setInputTarget(cloud<Dim>(corr.target));
-      align.setTargetFeatures(features);
-      align.setTransformationEstimation(
-          pcl::registration::TransformationEstimationSVD<pcl::PointXYZ, pcl::PointXYZ>::Ptr(
-              new pcl::registration::TransformationEstimationSVD<pcl::PointXYZ, pcl::PointXYZ>));
-      align.setNumberOfSamples(3);
-      align.setCorrespondenceRandomness(1);
-      align.setMaxCorrespondenceDistance(params.inlier_threshold);
-      if (!defaults_) {
-        align.setMaximumIterations(params.ransac.iterations);
-        align.setSimilarityThreshold(0.9f);
-        // Our acceptance rule as its inlier fraction (PCL's default 0 admits any hypothesis).
-        align.setInlierFraction(static_cast<float>(params.accept_threshold(Dim)) /
-                                static_cast<float>(std::max<std::size_t>(n, 1)));
-      }
-      Cloud aligned;
-      Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
-      if (n >= 3) {
-        std::srand(static_cast<unsigned>(params.seed));  // PCL draws from std::rand (in the child)
-        align.align(aligned);
-        if (align.hasConverged()) M = align.getFinalTransformation().template cast<double>();
-      }
-      return M;
-    }, result);
+    run_library_peer<Dim>(
+        corr, params, "PCL SampleConsensusPrerejective",
+        [&] {
+          const auto n = static_cast<std::size_t>(corr.size());
+          pcl::PointCloud<Feature>::Ptr features(new pcl::PointCloud<Feature>);
+          features->resize(n);
+          for (std::size_t i = 0; i < n; ++i) {
+            std::fill(std::begin((*features)[i].histogram), std::end((*features)[i].histogram),
+                      0.0f);
+            (*features)[i].histogram[0] = static_cast<float>(i);
+          }
+          pcl::SampleConsensusPrerejective<pcl::PointXYZ, pcl::PointXYZ, Feature> align;
+          align.setInputSource(cloud<Dim>(corr.source));
+          align.setSourceFeatures(features);
+          align.setInputTarget(cloud<Dim>(corr.target));
+          align.setTargetFeatures(features);
+          align.setTransformationEstimation(
+              pcl::registration::TransformationEstimationSVD<pcl::PointXYZ, pcl::PointXYZ>::Ptr(
+                  new pcl::registration::TransformationEstimationSVD<pcl::PointXYZ,
+                                                                     pcl::PointXYZ>));
+          align.setNumberOfSamples(3);
+          align.setCorrespondenceRandomness(1);
+          align.setMaxCorrespondenceDistance(params.inlier_threshold);
+          if (!defaults_) {
+            align.setMaximumIterations(params.ransac.iterations);
+            align.setSimilarityThreshold(0.9f);
+            // Our acceptance rule as its inlier fraction (PCL's default 0 admits any hypothesis).
+            align.setInlierFraction(static_cast<float>(params.accept_threshold(Dim)) /
+                                    static_cast<float>(std::max<std::size_t>(n, 1)));
+          }
+          Cloud aligned;
+          Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+          if (n >= 3) {
+            std::srand(
+                static_cast<unsigned>(params.seed));  // PCL draws from std::rand (in the child)
+            align.align(aligned);
+            if (align.hasConverged()) M = align.getFinalTransformation().template cast<double>();
+          }
+          return M;
+        },
+        result);
     return result;
   }
 

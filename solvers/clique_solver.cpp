@@ -1,11 +1,11 @@
 // `clique`: the CliReg verifier. Correspondence graph (Eq. 1) -> maximum clique C* ->
 // least-squares rigid fit on C* -> accept when |C*| reaches the threshold. One solver per clique
 // algorithm of max_clique.hpp (`clique-<algorithm>`), and `clique` for the default one.
-#include "core/rigid_fit.hpp"
-#include "solvers/detail/graph_stage.hpp"
 #include "cliques/max_clique.hpp"
-#include "solvers/registry.hpp"
+#include "core/rigid_fit.hpp"
 #include "core/timer.hpp"
+#include "solvers/detail/graph_stage.hpp"
+#include "solvers/registry.hpp"
 
 namespace verifybench {
 

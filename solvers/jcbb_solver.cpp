@@ -32,10 +32,10 @@
 #include <numeric>
 
 #include "core/chi2.hpp"
-#include "graph/compatibility_graph.hpp"
 #include "core/rigid_fit.hpp"
-#include "solvers/registry.hpp"
 #include "core/timer.hpp"
+#include "graph/compatibility_graph.hpp"
+#include "solvers/registry.hpp"
 
 namespace verifybench {
 
@@ -283,16 +283,32 @@ void register_jcbb_solver() {
 const ParamFamily& jcbb_param_family() {
   using K = ParamField::Kind;
   ParamField sigma = bind(&SolverParams::jcbb, &JcbbParams::sigma,
-                          {"jcbb-sigma", "jcbb_sigma", "M",
-                           "per-axis point noise sigma [m] (0 = inlier threshold / 3)", K::real, 0,
-                           1e9, "a finite value >= 0 (0 = inlier_threshold / 3)", {}, {}, {}});
+                          {"jcbb-sigma",
+                           "jcbb_sigma",
+                           "M",
+                           "per-axis point noise sigma [m] (0 = inlier threshold / 3)",
+                           K::real,
+                           0,
+                           1e9,
+                           "a finite value >= 0 (0 = inlier_threshold / 3)",
+                           {},
+                           {},
+                           {}});
   sigma.report = [](const SolverParams& p) { return p.jcbb_point_sigma(); };
-  static const ParamFamily family{
-      "jcbb",
-      "jcbb",
-      {sigma, bind(&SolverParams::jcbb, &JcbbParams::confidence,
-                   {"jcbb-confidence", "jcbb_confidence", "P", "level of the chi-square gates",
-                    K::real, 1e-9, 1 - 1e-12, "a value in (0, 1)", {}, {}, {}})}};
+  static const ParamFamily family{"jcbb",
+                                  "jcbb",
+                                  {sigma, bind(&SolverParams::jcbb, &JcbbParams::confidence,
+                                               {"jcbb-confidence",
+                                                "jcbb_confidence",
+                                                "P",
+                                                "level of the chi-square gates",
+                                                K::real,
+                                                1e-9,
+                                                1 - 1e-12,
+                                                "a value in (0, 1)",
+                                                {},
+                                                {},
+                                                {}})}};
   return family;
 }
 

@@ -6,12 +6,12 @@
 // motion. The best hypothesis wins; its consensus set is refit by least squares.
 #include <algorithm>
 
+#include "cliques/max_clique.hpp"
 #include "core/rigid_fit.hpp"
+#include "core/timer.hpp"
 #include "solvers/detail/consensus.hpp"
 #include "solvers/detail/graph_stage.hpp"
-#include "cliques/max_clique.hpp"
 #include "solvers/registry.hpp"
-#include "core/timer.hpp"
 
 namespace verifybench {
 
@@ -89,16 +89,32 @@ void register_mac_solver() {
 
 const ParamFamily& mac_param_family() {
   using K = ParamField::Kind;
-  static const ParamFamily family{
-      "mac",
-      "mac",
-      {bind(&SolverParams::mac, &MacParams::max_cliques,
-            {"mac-max-cliques", "mac_max_cliques", "K", "stop enumerating maximal cliques after K",
-             K::integer, 1, 4.6e18, "an integer >= 1", {}, {}, {}}),
-       bind(&SolverParams::mac, &MacParams::min_clique,
-            {"mac-min-clique", "mac_min_clique", "K",
-             "smallest maximal clique that makes a hypothesis", K::integer, 2, 1 << 30,
-             "an integer >= 2", {}, {}, {}})}};
+  static const ParamFamily family{"mac",
+                                  "mac",
+                                  {bind(&SolverParams::mac, &MacParams::max_cliques,
+                                        {"mac-max-cliques",
+                                         "mac_max_cliques",
+                                         "K",
+                                         "stop enumerating maximal cliques after K",
+                                         K::integer,
+                                         1,
+                                         4.6e18,
+                                         "an integer >= 1",
+                                         {},
+                                         {},
+                                         {}}),
+                                   bind(&SolverParams::mac, &MacParams::min_clique,
+                                        {"mac-min-clique",
+                                         "mac_min_clique",
+                                         "K",
+                                         "smallest maximal clique that makes a hypothesis",
+                                         K::integer,
+                                         2,
+                                         1 << 30,
+                                         "an integer >= 2",
+                                         {},
+                                         {},
+                                         {}})}};
   return family;
 }
 

@@ -22,7 +22,7 @@ struct MacParams {
 };
 
 struct JcbbParams {
-  double sigma = 0.0;         ///< per-axis point noise sigma [m]; 0 = inlier_threshold / 3
+  double sigma = 0.0;        ///< per-axis point noise sigma [m]; 0 = inlier_threshold / 3
   double confidence = 0.95;  ///< level of the chi-square gates, in (0, 1)
 };
 

@@ -21,10 +21,10 @@
 #include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "core/rigid_fit.hpp"
+#include "core/timer.hpp"
 #include "solvers/detail/consensus.hpp"
 #include "solvers/detail/ransac_kernels.hpp"
 #include "solvers/registry.hpp"
-#include "core/timer.hpp"
 
 namespace verifybench {
 
@@ -190,7 +190,6 @@ class Engine {
     Rigid<Dim> T;
     Score score = kNone;
   };
-
 
   bool has_best() const { return best_score_ != kNone; }
   static bool better(Score a, Score b) { return a > b; }
@@ -403,15 +402,41 @@ const ParamFamily& ransac_param_family() {
       "ransac",
       "RANSAC family (ransac, ransac-adaptive, msac, lo-ransac, prosac, pcl-*, open3d-*)",
       {bind(&SolverParams::ransac, &RansacParams::iterations,
-            {"ransac-iterations", "ransac_iterations", "K",
-             "fixed iteration count, or the cap of the adaptive count", K::integer, 1, 2e9,
-             "an integer >= 1", {}, {}, {}}),
+            {"ransac-iterations",
+             "ransac_iterations",
+             "K",
+             "fixed iteration count, or the cap of the adaptive count",
+             K::integer,
+             1,
+             2e9,
+             "an integer >= 1",
+             {},
+             {},
+             {}}),
        bind(&SolverParams::ransac, &RansacParams::adaptive,
-            {"ransac-adaptive", "ransac_adaptive", "",
-             "`ransac`: adaptive count k = log(1-p)/log(1-w^s)", K::flag, 0, 1, "", {}, {}, {}}),
+            {"ransac-adaptive",
+             "ransac_adaptive",
+             "",
+             "`ransac`: adaptive count k = log(1-p)/log(1-w^s)",
+             K::flag,
+             0,
+             1,
+             "",
+             {},
+             {},
+             {}}),
        bind(&SolverParams::ransac, &RansacParams::confidence,
-            {"ransac-confidence", "ransac_confidence", "P", "p of the adaptive count", K::real,
-             1e-9, 1 - 1e-12, "a value in (0, 1)", {}, {}, {}})}};
+            {"ransac-confidence",
+             "ransac_confidence",
+             "P",
+             "p of the adaptive count",
+             K::real,
+             1e-9,
+             1 - 1e-12,
+             "a value in (0, 1)",
+             {},
+             {},
+             {}})}};
   return family;
 }
 

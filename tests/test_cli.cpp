@@ -77,11 +77,11 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
 TEST(Cli, FamilyOptionsReachTheReportAndAreRangeChecked) {
   const fs::path out = fs::temp_directory_path() / "vb_cli_family.json";
   fs::remove(out);
-  const CliRun r = run(
-      "sweep --n 30 --outliers 0.5 --trials 1 --solvers ransac,mac,jcbb --ransac-iterations 77 "
-      "--ransac-adaptive --ransac-confidence 0.9 --mac-max-cliques 12345 --mac-min-clique 4 "
-      "--jcbb-sigma 0.02 --jcbb-confidence 0.9 --quiet --out " +
-      out.string());
+  const CliRun r =
+      run("sweep --n 30 --outliers 0.5 --trials 1 --solvers ransac,mac,jcbb --ransac-iterations 77 "
+          "--ransac-adaptive --ransac-confidence 0.9 --mac-max-cliques 12345 --mac-min-clique 4 "
+          "--jcbb-sigma 0.02 --jcbb-confidence 0.9 --quiet --out " +
+          out.string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(out);
   const auto p = nlohmann::json::parse(in)["parameters"];
@@ -118,8 +118,8 @@ TEST(Cli, MalformedDumpNamesFileAndLine) {
 TEST(Cli, ListAndHelp) {
   const CliRun list = run("list");
   EXPECT_EQ(list.code, 0);
-  for (const char* name : {"clique", "ransac", "lo-ransac", "jcbb", "generators", "rigid-group",
-                           "bev-orb"}) {
+  for (const char* name :
+       {"clique", "ransac", "lo-ransac", "jcbb", "generators", "rigid-group", "bev-orb"}) {
     EXPECT_NE(list.output.find(name), std::string::npos) << name;
   }
   EXPECT_EQ(list.output.find("pcl-ransac") != std::string::npos, bool(VB_BUILT_PCL));

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <set>
 
-#include "datasets/dimacs.hpp"
 #include "cliques/max_clique.hpp"
+#include "datasets/dimacs.hpp"
 
 namespace verifybench {
 namespace {

@@ -5,10 +5,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "graph/compatibility_graph.hpp"
+#include "cliques/max_clique.hpp"
 #include "datasets/dump_format.hpp"
 #include "datasets/text_dump.hpp"
-#include "cliques/max_clique.hpp"
+#include "graph/compatibility_graph.hpp"
 
 namespace verifybench {
 namespace {

@@ -1,9 +1,9 @@
 // End to end through the harness: clique at 95% outliers, seeds and determinism of sweeps.
 #include <gtest/gtest.h>
 
+#include "generators/synthetic.hpp"
 #include "harness/builtin.hpp"
 #include "harness/harness.hpp"
-#include "generators/synthetic.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {

@@ -1,17 +1,18 @@
 // The front end against oracles: B-SHOT codes worked out by hand from the rule, HBST against
-// brute-force Hamming search, the BEV image of a drawn point set counted by hand, and and extraction on a drawn scene with a known motion (the motion is recovered).
+// brute-force Hamming search, the BEV image of a drawn point set counted by hand, and and
+// extraction on a drawn scene with a known motion (the motion is recovered).
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <random>
 
-#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "frontend/bev.hpp"
 #include "frontend/bshot.hpp"
 #include "frontend/extract.hpp"
 #include "frontend/hbst.hpp"
+#include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "core/parallel.hpp"
-#include "graph/compatibility_graph.hpp"
 #include "generators/synthetic.hpp"
+#include "graph/compatibility_graph.hpp"
 
 namespace verifybench {
 namespace {
@@ -48,14 +48,18 @@ TEST(WorkerPool, EveryIndexOnceInFixedBlocksAndErrorsReachTheCaller) {
         who[static_cast<std::size_t>(i)] = std::this_thread::get_id();
       });
       for (int i = 0; i < count; ++i) EXPECT_EQ(calls[static_cast<std::size_t>(i)], 1) << i;
-      // Block k of `threads` contiguous blocks is one worker's: ids change at most threads - 1 times.
+      // Block k of `threads` contiguous blocks is one worker's: ids change at most threads - 1
+      // times.
       int changes = 0;
-      for (int i = 1; i < count; ++i) changes += who[static_cast<std::size_t>(i)] != who[static_cast<std::size_t>(i - 1)];
+      for (int i = 1; i < count; ++i)
+        changes += who[static_cast<std::size_t>(i)] != who[static_cast<std::size_t>(i - 1)];
       EXPECT_LE(changes, threads - 1) << threads << " threads, " << count;
     }
-    EXPECT_THROW(pool.parallel_for(10, [](int i) {
-      if (i == 7) throw std::runtime_error("seven");
-    }), std::runtime_error);
+    EXPECT_THROW(pool.parallel_for(10,
+                                   [](int i) {
+                                     if (i == 7) throw std::runtime_error("seven");
+                                   }),
+                 std::runtime_error);
     std::atomic<int> after{0};
     pool.parallel_for(10, [&](int) { ++after; });  // still usable after an error
     EXPECT_EQ(after, 10);

@@ -8,11 +8,11 @@
 #include <numeric>
 #include <random>
 
-#include "harness/builtin.hpp"
 #include "core/chi2.hpp"
 #include "core/metrics.hpp"
 #include "core/rigid_fit.hpp"
 #include "generators/synthetic.hpp"
+#include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {

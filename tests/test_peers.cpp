@@ -5,9 +5,9 @@
 
 #include <cstdlib>
 
-#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
+#include "harness/builtin.hpp"
 #include "peers/detail/embed.hpp"
 #include "solvers/registry.hpp"
 

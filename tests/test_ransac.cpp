@@ -6,10 +6,10 @@
 #include <cmath>
 #include <random>
 
-#include "harness/builtin.hpp"
 #include "core/metrics.hpp"
 #include "core/rigid_fit.hpp"
 #include "generators/synthetic.hpp"
+#include "harness/builtin.hpp"
 #include "solvers/detail/ransac_kernels.hpp"
 #include "solvers/registry.hpp"
 #include "test_util.hpp"

@@ -4,10 +4,10 @@
 #include <limits>
 #include <tuple>
 
-#include "harness/builtin.hpp"
+#include "cliques/max_clique.hpp"
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
-#include "cliques/max_clique.hpp"
+#include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
@@ -25,14 +25,8 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     EXPECT_FALSE(info.description.empty());
   }
   // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
-  std::vector<std::string> expected{"clique",
-                                    "jcbb",
-                                    "lo-ransac",
-                                    "mac",
-                                    "msac",
-                                    "prosac",
-                                    "ransac",
-                                    "ransac-adaptive"};
+  std::vector<std::string> expected{"clique", "jcbb",   "lo-ransac", "mac",
+                                    "msac",   "prosac", "ransac",    "ransac-adaptive"};
   if (VB_BUILT_OPEN3D) expected.insert(expected.end(), {"open3d-ransac", "open3d-ransac-default"});
   if (VB_BUILT_PCL) {
     expected.insert(expected.end(), {"pcl-prerejective", "pcl-prerejective-default", "pcl-ransac",

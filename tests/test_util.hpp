@@ -5,8 +5,8 @@
 #include <random>
 #include <vector>
 
-#include "graph/bitgraph.hpp"
 #include "core/correspondences.hpp"
+#include "graph/bitgraph.hpp"
 
 namespace verifybench::test {
 

@@ -6,9 +6,9 @@
 #include <limits>
 #include <vector>
 
-#include "graph/bitgraph.hpp"
 #include "cliques/detail/local_search.hpp"
 #include "core/timer.hpp"
+#include "graph/bitgraph.hpp"
 
 namespace verifybench::detail {
 

@@ -20,7 +20,7 @@ class LocalSearch {
   /// or the deadline passes; true when it found a larger clique.
   bool run_until(long long step_goal, long long work_goal, const SteadyClock::time_point& deadline);
   const std::vector<int>& best() const { return best_; }  ///< in the order met, not sorted
-  long long steps() const { return steps_; }  ///< additions, swaps and restarts
+  long long steps() const { return steps_; }              ///< additions, swaps and restarts
   /// Vertices scanned and words read so far: what a step costs grows with n and with the share of
   /// non-neighbours, so an interleaving schedule budgets this rather than steps.
   long long work() const;

@@ -1,9 +1,9 @@
 #pragma once
 // The graph stage shared by the graph-based solvers (clique-*, mac): Eq. (1) with the solver's
 // parameters, timed into result.times.graph_ms, its edge count into result.counters.graph_edges.
+#include "core/timer.hpp"
 #include "graph/compatibility_graph.hpp"
 #include "solvers/solver.hpp"
-#include "core/timer.hpp"
 
 namespace verifybench {
 

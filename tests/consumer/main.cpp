@@ -16,7 +16,7 @@ int main() {
   const auto set = vb::make_synthetic<3>(p);
   const auto result = vb::SolverRegistry::create("clique")->solve(set.corr, vb::SolverParams{});
   const auto error = (result.T_target_source.matrix() - set.truth.T_target_source->matrix()).norm();
-  std::printf("verifybench %s: clique status %s, %zu inliers, |T - T_true| = %.4f\n",
-              vb::kVersion, vb::to_string(result.status), result.inliers.size(), error);
+  std::printf("verifybench %s: clique status %s, %zu inliers, |T - T_true| = %.4f\n", vb::kVersion,
+              vb::to_string(result.status), result.inliers.size(), error);
   return result.status == vb::Status::ok && error < 0.05 ? 0 : 1;
 }
