@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/errors.hpp"
 #include "core/metrics.hpp"
 
 namespace verifybench {
@@ -48,3 +49,22 @@ TEST(Metrics, InlierScoresByHand) {
 
 }  // namespace
 }  // namespace verifybench
+
+// The one strict number parser every reader and the CLI share.
+TEST(NumberTokens, WholeTokensOnlyTinyValuesReadOverflowRefused) {
+  using verifybench::NumberError;
+  EXPECT_EQ(verifybench::parse_real_token("0.25").value, 0.25);
+  EXPECT_EQ(verifybench::parse_real_token("1e-320").error, NumberError::none);  // subnormal
+  EXPECT_GT(verifybench::parse_real_token("1e-320").value, 0.0);
+  EXPECT_EQ(verifybench::parse_real_token("1e999").error, NumberError::not_finite);
+  EXPECT_EQ(verifybench::parse_real_token("nan").error, NumberError::not_finite);
+  EXPECT_EQ(verifybench::parse_real_token("1.5x").error, NumberError::not_a_number);
+  EXPECT_EQ(verifybench::parse_real_token(" 1").error, NumberError::not_a_number);
+  EXPECT_EQ(verifybench::parse_real_token("").error, NumberError::not_a_number);
+  EXPECT_EQ(verifybench::parse_integer_token("-42"), -42);
+  EXPECT_FALSE(verifybench::parse_integer_token("4294967297x"));
+  EXPECT_FALSE(verifybench::parse_integer_token("99999999999999999999"));
+  EXPECT_EQ(verifybench::parse_unsigned_token("18446744073709551615"), 18446744073709551615ull);
+  EXPECT_FALSE(verifybench::parse_unsigned_token("-1"));
+  EXPECT_FALSE(verifybench::parse_unsigned_token("18446744073709551616"));
+}
