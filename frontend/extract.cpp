@@ -2,8 +2,11 @@
 
 #include <cmath>
 #include <mutex>
+#include <numeric>
+#include <random>
 #include <stdexcept>
 
+#include "core/random.hpp"
 #include "core/registry.hpp"
 #include "core/timer.hpp"
 
@@ -22,8 +25,7 @@ Rigid<2> planar(const Rigid<3>& T) {
 }
 
 template <int Dim>
-LabeledSet<Dim> assemble(const Features& s, const Features& t,
-                         const std::vector<std::pair<int, BinaryMatch>>& m,
+LabeledSet<Dim> assemble(const Features& s, const Features& t, const std::vector<FeatureMatch>& m,
                          const std::optional<Rigid<Dim>>& T, double label_threshold) {
   LabeledSet<Dim> set;
   const auto n = static_cast<Eigen::Index>(m.size());
@@ -32,9 +34,9 @@ LabeledSet<Dim> assemble(const Features& s, const Features& t,
   set.corr.score.resize(m.size());
   for (std::size_t k = 0; k < m.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
-    set.corr.source.col(i) = s.points[static_cast<std::size_t>(m[k].first)].head<Dim>();
-    set.corr.target.col(i) = t.points[static_cast<std::size_t>(m[k].second.index)].head<Dim>();
-    set.corr.score[k] = -m[k].second.distance;  // higher = better
+    set.corr.source.col(i) = s.points[static_cast<std::size_t>(m[k].source)].head<Dim>();
+    set.corr.target.col(i) = t.points[static_cast<std::size_t>(m[k].target)].head<Dim>();
+    set.corr.score[k] = -m[k].distance;  // higher = better
   }
   if (T) {
     set.truth.T_target_source = *T;
@@ -45,6 +47,32 @@ LabeledSet<Dim> assemble(const Features& s, const Features& t,
     }
   }
   return set;
+}
+
+/// Keeps whole source keypoints, drawn in a seeded random order, while the matches fit the cap;
+/// the kept matches stay in their original order.
+std::vector<FeatureMatch> capped(std::vector<FeatureMatch> matches, std::size_t sources,
+                                 std::size_t cap, std::uint64_t seed) {
+  std::vector<std::size_t> per_source(sources, 0);
+  for (const auto& m : matches) ++per_source[static_cast<std::size_t>(m.source)];
+  std::vector<int> order(sources);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(derive_seed(seed, {0x434150u}));
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<char> keep(sources, 0);
+  std::size_t total = 0;
+  for (int s : order) {
+    const std::size_t k = per_source[static_cast<std::size_t>(s)];
+    if (k == 0 || total + k > cap) continue;
+    keep[static_cast<std::size_t>(s)] = 1;
+    total += k;
+  }
+  std::vector<FeatureMatch> out;
+  out.reserve(total);
+  for (const auto& m : matches) {
+    if (keep[static_cast<std::size_t>(m.source)]) out.push_back(m);
+  }
+  return out;
 }
 
 json provenance_3d(const ExtractParams& params) {
@@ -58,6 +86,14 @@ json provenance_3d(const ExtractParams& params) {
           {"iss_min_neighbors", p3.min_neighbors},
           {"normal_radius", p3.normal_radius},
           {"shot_radius", p3.shot_radius}};
+}
+
+json provenance_fpfh(const ExtractParams& params) {
+  const auto& pf = params.pf;
+  return {{"name", "fpfh: voxel grid (keypoints = voxel centroids), normals, FPFH"},
+          {"voxel", pf.voxel},
+          {"normal_radius", pf.normal_radius > 0 ? pf.normal_radius : 2 * pf.voxel},
+          {"fpfh_radius", pf.fpfh_radius > 0 ? pf.fpfh_radius : 5 * pf.voxel}};
 }
 
 json provenance_2d(const ExtractParams& params) {
@@ -79,6 +115,9 @@ const Registry<PipelineInfo>& pipelines() {
     registry.add({"2d", "bird's-eye-view density image + ORB (OpenCV)",
                   [](const Cloud& c, const ExtractParams& p) { return features_2d(c, p.p2); },
                   provenance_2d});
+    registry.add({"fpfh", "voxel centroids + FPFH (PCL), matched in the 33-bin feature space",
+                  [](const Cloud& c, const ExtractParams& p) { return features_fpfh(c, p.pf); },
+                  provenance_fpfh});
   });
   return registry;
 }
@@ -96,21 +135,61 @@ Dump match_features(const Features& source, const Features& target,
   if (params.max_hamming < 0 || !(params.label_threshold > 0.0)) {
     throw std::invalid_argument("max_hamming must be >= 0 and label_threshold > 0");
   }
+  if (params.matching.kind == MatchingPolicy::Kind::radius && source.real.dims > 0 &&
+      !std::isfinite(params.max_feature_distance)) {
+    throw std::invalid_argument("radius matching of FPFH needs a finite max_feature_distance");
+  }
   if (source.descriptors.bits != target.descriptors.bits) {
     throw std::invalid_argument("source and target descriptors differ in length");
   }
-  StopWatch clock;
-  HbstTree tree(std::max(1, target.descriptors.bits), params.hbst);
-  tree.insert(target.descriptors);
-  const double build_ms = clock.ms();
+  const bool real = source.real.dims > 0;
+  if (real != (target.real.dims > 0)) {
+    throw std::invalid_argument("source and target descriptors are of different kinds");
+  }
+  json matcher = {{"policy", params.matching.name()}};
+  std::vector<FeatureMatch> matches;
+  double build_ms = 0;
   StopWatch query_clock;
-  std::vector<std::pair<int, BinaryMatch>> matches;
-  for (int i = 0; i < source.descriptors.size(); ++i) {
-    const BinaryMatch m =
-        tree.nearest(source.descriptors.row(i), params.max_hamming, params.exact_matching);
-    if (m.index >= 0) matches.emplace_back(i, m);
+  if (real) {
+    matches = match_real(source.real, target.real, params.matching, params.max_feature_distance);
+    matcher["name"] = "k-d tree in FPFH space (exact)";
+    matcher["max_feature_distance"] = std::isfinite(params.max_feature_distance)
+                                          ? json(params.max_feature_distance)
+                                          : json(nullptr);
+    matcher["score"] = "minus the feature-space distance";
+  } else if (params.matching.kind == MatchingPolicy::Kind::nearest) {
+    // The paper's matcher: the nearest descriptor through an HBST (one leaf, or exact).
+    StopWatch clock;
+    HbstTree tree(std::max(1, target.descriptors.bits), params.hbst);
+    tree.insert(target.descriptors);
+    build_ms = clock.ms();
+    query_clock = StopWatch();
+    for (int i = 0; i < source.descriptors.size(); ++i) {
+      const BinaryMatch m =
+          tree.nearest(source.descriptors.row(i), params.max_hamming, params.exact_matching);
+      if (m.index >= 0) matches.push_back({i, m.index, static_cast<double>(m.distance)});
+    }
+    matcher["name"] =
+        params.exact_matching ? "HBST, exact (backtracking)" : "HBST, one leaf (approximate)";
+    matcher["max_leaf_size"] = params.hbst.max_leaf_size;
+    matcher["tree_depth"] = tree.depth();
+  } else {
+    matches =
+        match_binary(source.descriptors, target.descriptors, params.matching, params.max_hamming);
+    matcher["name"] = "exhaustive Hamming search";
+  }
+  if (!real) {
+    matcher["max_hamming"] = params.max_hamming;
+    matcher["score"] = "minus the Hamming distance [bits]";
   }
   const double query_ms = query_clock.ms();
+  const std::size_t matched = matches.size();
+  if (params.max_matches > 0 && matches.size() > params.max_matches) {
+    matches = capped(std::move(matches), source.points.size(), params.max_matches, params.seed);
+  }
+  matcher["max_matches"] = params.max_matches;
+  matcher["matches_before_cap"] = matched;
+  matcher["seed"] = params.seed;
 
   Dump dump;
   if (source.dim == 3) {
@@ -125,20 +204,14 @@ Dump match_features(const Features& source, const Features& target,
   dump.provenance = {
       {"tool", "verifybench extract"},
       {"pipeline", pipeline},
-      {"matcher",
-       {{"name",
-         params.exact_matching ? "HBST, exact (backtracking)" : "HBST, one leaf (approximate)"},
-        {"max_hamming", params.max_hamming},
-        {"max_leaf_size", params.hbst.max_leaf_size},
-        {"tree_depth", tree.depth()},
-        {"score", "minus the Hamming distance [bits]"}}},
+      {"matcher", matcher},
       {"counts",
        {{"source", source.counts}, {"target", target.counts}, {"matches", matches.size()}}},
       {"ms",
        {{"source", source.ms},
         {"target", target.ms},
         {"hbst_build", build_ms},
-        {"hbst_match", query_ms}}}};
+        {"match", query_ms}}}};
   return dump;
 }
 

@@ -4,7 +4,9 @@
 // matched to its nearest target descriptor by Hamming distance through an HBST built
 // incrementally over the target's descriptors; a match is kept within max_hamming bits. Labels,
 // when the ground truth is given: 1 when ||T m - q|| < label_threshold.
+#include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,13 +14,22 @@
 #include "datasets/dump_format.hpp"
 #include "frontend/features.hpp"
 #include "frontend/hbst.hpp"
+#include "frontend/matching.hpp"
 
 namespace verifybench {
 
 struct ExtractParams {
-  std::string pipeline = "3d";  ///< "3d" (ISS + B-SHOT) or "2d" (BEV + ORB)
+  std::string pipeline = "3d";  ///< "3d" (ISS + B-SHOT), "2d" (BEV + ORB) or "fpfh"
   Pipeline3dParams p3;
   Pipeline2dParams p2;
+  PipelineFpfhParams pf;
+  MatchingPolicy matching;  ///< nearest (binary: through the HBST), mutual, knn:K, radius
+  /// FPFH: keep matches within this feature-space distance (radius needs it finite)
+  double max_feature_distance = std::numeric_limits<double>::infinity();
+  /// Cap on the dump's rows (0 = none): source keypoints are drawn in a seeded random order and
+  /// kept with all their matches while the total stays within the cap (k-NN dumps of big scans).
+  std::size_t max_matches = 0;
+  std::uint64_t seed = 1;       ///< the draw of the cap
   int max_hamming = 50;         ///< keep a match within this many bits
   bool exact_matching = false;  ///< HBST with backtracking (= brute force) instead of one leaf
   HbstParams hbst;

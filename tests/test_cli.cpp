@@ -67,6 +67,8 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
     expect_usage_error("extract --pipeline 4d --source a --target b --out /tmp/x",
                        "is not 3d or 2d");
     expect_usage_error("extract --source a.bin --out /tmp/x", "--target is required");
+    expect_usage_error("extract --matching closest --source a --target b --out /tmp/x",
+                       "--matching: matching policy 'closest' is not nearest, mutual");
   } else {
     expect_usage_error("extract --source a.bin --out /tmp/x", "this build has no front end");
   }

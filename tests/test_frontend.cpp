@@ -12,6 +12,7 @@
 #include "frontend/bshot.hpp"
 #include "frontend/extract.hpp"
 #include "frontend/hbst.hpp"
+#include "frontend/matching.hpp"
 #include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
 
@@ -221,6 +222,145 @@ TEST(Extract, RecoversAKnownMotionFromADrawnStreet2D) {
   T2.translation() = Eigen::Vector2d(2.0, 1.0);
   EXPECT_LT(rotation_error_deg(r.T_target_source, T2), 2.0);
   EXPECT_LT(translation_error(r.T_target_source, T2), 0.5);
+}
+
+// Matching policies against their definitions, worked out from the full distance matrix.
+template <class Distance>
+std::vector<FeatureMatch> by_definition(int ns, int nt, Distance dist, const MatchingPolicy& p,
+                                        double max_d) {
+  std::vector<FeatureMatch> out;
+  auto nearest_target = [&](int i) {
+    int best = -1;
+    for (int j = 0; j < nt; ++j)
+      if (best < 0 || dist(i, j) < dist(i, best)) best = j;
+    return best;
+  };
+  auto nearest_source = [&](int j) {
+    int best = -1;
+    for (int i = 0; i < ns; ++i)
+      if (best < 0 || dist(i, j) < dist(best, j)) best = i;
+    return best;
+  };
+  for (int i = 0; i < ns; ++i) {
+    std::vector<FeatureMatch> row;
+    for (int j = 0; j < nt; ++j) row.push_back({i, j, dist(i, j)});
+    std::stable_sort(row.begin(), row.end(),
+                     [](const auto& a, const auto& b) { return a.distance < b.distance; });
+    const int keep = p.kind == MatchingPolicy::Kind::knn      ? p.k
+                     : p.kind == MatchingPolicy::Kind::radius ? nt
+                                                              : 1;
+    for (int r = 0; r < std::min(keep, nt); ++r) {
+      const FeatureMatch& m = row[static_cast<std::size_t>(r)];
+      if (m.distance > max_d) break;
+      if (p.kind == MatchingPolicy::Kind::nearest && m.target != nearest_target(i)) continue;
+      if (p.kind == MatchingPolicy::Kind::mutual && nearest_source(m.target) != i) continue;
+      out.push_back(m);
+    }
+  }
+  return out;
+}
+
+void expect_same(const std::vector<FeatureMatch>& got, const std::vector<FeatureMatch>& want,
+                 const std::string& what) {
+  ASSERT_EQ(got.size(), want.size()) << what;
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    EXPECT_EQ(got[k].source, want[k].source) << what << " #" << k;
+    EXPECT_EQ(got[k].target, want[k].target) << what << " #" << k;
+    EXPECT_NEAR(got[k].distance, want[k].distance, 1e-4) << what << " #" << k;
+  }
+}
+
+TEST(Matching, EveryPolicyMatchesItsDefinitionForBinaryAndFpfh) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(0.0f, 10.0f);
+  RealDescriptors rs, rt;
+  rs.dims = rt.dims = 33;
+  for (int k = 0; k < 60 * 33; ++k) rs.data.push_back(u(rng));
+  for (int k = 0; k < 80 * 33; ++k) rt.data.push_back(u(rng));
+  BinaryDescriptors bs(96), bt(96);
+  for (int k = 0; k < 60; ++k) {
+    std::uint64_t* r = bs.add();
+    r[0] = rng(), r[1] = rng() & 0xffffffffu;
+  }
+  for (int k = 0; k < 80; ++k) {
+    std::uint64_t* r = bt.add();
+    r[0] = rng(), r[1] = rng() & 0xffffffffu;
+  }
+  auto l2 = [&](int i, int j) {
+    double d = 0;
+    for (int b = 0; b < 33; ++b) d += std::pow(double(rs.row(i)[b]) - rt.row(j)[b], 2);
+    return std::sqrt(d);
+  };
+  // Hamming ties are common: the definition's stable sort keeps the lower target first, as the
+  // matcher must; ties of the nearest source go to the lower source.
+  auto ham = [&](int i, int j) { return double(hamming(bs.row(i), bt.row(j), bs.words())); };
+  for (const char* text : {"nearest", "mutual", "knn:3", "radius"}) {
+    const MatchingPolicy p = parse_matching(text);
+    EXPECT_EQ(p.name(), text);
+    const double radius = 20.0;
+    expect_same(match_real(rs, rt, p, radius), by_definition(60, 80, l2, p, radius),
+                std::string("fpfh ") + text);
+    expect_same(match_binary(bs, bt, p, 40), by_definition(60, 80, ham, p, 40),
+                std::string("binary ") + text);
+  }
+  EXPECT_THROW(parse_matching("knn:0"), std::invalid_argument);
+  EXPECT_THROW(parse_matching("closest"), std::invalid_argument);
+}
+
+TEST(Extract, FpfhRecoversAKnownMotionFromADrawnStreet) {
+  register_builtin_solvers();
+  std::mt19937_64 rng(5);
+  const Cloud source = drawn_street(rng);
+  Rigid<3> T = Rigid<3>::Identity();
+  T.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(1.0, 0.5, 0.0);
+  const Cloud target = moved(source, T, rng, 0.01);
+  ExtractParams p;
+  p.pipeline = "fpfh";
+  p.pf.voxel = 0.3;
+  p.matching = parse_matching("mutual");
+  p.label_threshold = 0.6;
+  const Features fs = extract_features(source, p), ft = extract_features(target, p);
+  EXPECT_EQ(fs.real.size(), static_cast<int>(fs.points.size()));
+  EXPECT_GT(fs.real.size(), 100);
+  const Dump dump = match_features(fs, ft, T, p);
+  EXPECT_EQ(dump.provenance["matcher"]["policy"], "mutual");
+  const auto& set = std::get<LabeledSet<3>>(dump.set);
+  SolverParams sp;
+  sp.eps = 0.6;
+  sp.inlier_threshold = 0.6;
+  const auto r = SolverRegistry::create("clique")->solve(set.corr, sp);
+  ASSERT_TRUE(r.accepted);
+  EXPECT_LT(rotation_error_deg(r.T_target_source, T), 2.0);
+  EXPECT_LT(translation_error(r.T_target_source, T), 0.3);
+}
+
+// --max-matches keeps whole source keypoints, drawn by the seed, within the cap.
+TEST(Extract, MatchCapKeepsWholeKeypointsAndFollowsTheSeed) {
+  std::mt19937_64 rng(7);
+  const Cloud source = drawn_street(rng);
+  const Cloud target = moved(source, Rigid<3>::Identity(), rng, 0.01);
+  ExtractParams p;
+  p.matching = parse_matching("knn:3");
+  p.max_hamming = 1000;  // every source keypoint gets exactly 3 matches
+  const Features fs = extract_features(source, p), ft = extract_features(target, p);
+  ASSERT_GE(ft.descriptors.size(), 3);
+  const auto rows = [&](std::size_t cap, std::uint64_t seed) {
+    ExtractParams q = p;
+    q.max_matches = cap;
+    q.seed = seed;
+    const Dump d = match_features(fs, ft, std::nullopt, q);
+    return std::get<LabeledSet<3>>(d.set).corr.source;
+  };
+  const auto all = rows(0, 1);
+  ASSERT_EQ(all.cols(), 3 * fs.descriptors.size());
+  const auto a = rows(31, 1), b = rows(31, 1), c = rows(31, 2);
+  EXPECT_EQ(a.cols(), 30);  // 10 whole keypoints of 3 matches; an 11th would pass 31
+  EXPECT_TRUE(a.isApprox(b));
+  EXPECT_FALSE(a.isApprox(c));
+  for (Eigen::Index k = 0; k < a.cols(); k += 3) {  // each keypoint's 3 matches stay together
+    EXPECT_TRUE(a.col(k).isApprox(a.col(k + 1)) && a.col(k).isApprox(a.col(k + 2))) << k;
+  }
 }
 
 TEST(CloudIo, MalformedAndEmptyCloudsAreNamedErrors) {

@@ -1,0 +1,86 @@
+// FPFH front end on PCL 1.13: VoxelGrid, NormalEstimation, FPFHEstimation on every voxel centroid.
+// Single-threaded (FPFHEstimation, not the OMP variant), so results do not depend on the machine.
+#include <pcl/console/print.h>
+#include <pcl/features/fpfh.h>
+#include <pcl/features/normal_3d.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/timer.hpp"
+#include "frontend/features.hpp"
+
+namespace verifybench {
+
+Features features_fpfh(const Cloud& cloud, const PipelineFpfhParams& p) {
+  for (auto [v, name, zero_ok] : {std::tuple{p.voxel, "voxel", false},
+                                  {p.normal_radius, "normal_radius", true},
+                                  {p.fpfh_radius, "fpfh_radius", true}}) {
+    if (std::isfinite(v) && (v > 0.0 || (zero_ok && v == 0.0))) continue;
+    std::ostringstream msg;
+    msg << "FPFH pipeline: " << name << " = " << v << " is invalid; expected a finite value > 0"
+        << (zero_ok ? " (0 = the default multiple of the voxel)" : "");
+    throw std::invalid_argument(msg.str());
+  }
+  const double normal_radius = p.normal_radius > 0 ? p.normal_radius : 2.0 * p.voxel;
+  const double fpfh_radius = p.fpfh_radius > 0 ? p.fpfh_radius : 5.0 * p.voxel;
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  using PointT = pcl::PointXYZ;
+  Features f;
+  f.dim = 3;
+  f.real.dims = 33;
+  f.counts["points"] = static_cast<double>(cloud.size());
+
+  StopWatch clock;
+  pcl::PointCloud<PointT>::Ptr raw(new pcl::PointCloud<PointT>);
+  raw->reserve(cloud.size());
+  for (const auto& q : cloud) raw->push_back(PointT(q.x(), q.y(), q.z()));
+  pcl::PointCloud<PointT>::Ptr down(new pcl::PointCloud<PointT>);
+  pcl::VoxelGrid<PointT> grid;
+  grid.setInputCloud(raw);
+  const auto leaf = static_cast<float>(p.voxel);
+  grid.setLeafSize(leaf, leaf, leaf);
+  grid.filter(*down);
+  f.ms["voxel"] = clock.ms();
+  f.counts["voxels"] = static_cast<double>(down->size());
+  f.counts["keypoints"] = static_cast<double>(down->size());
+
+  StopWatch normal_clock;
+  pcl::search::KdTree<PointT>::Ptr tree(new pcl::search::KdTree<PointT>);
+  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+  pcl::NormalEstimation<PointT, pcl::Normal> ne;
+  ne.setInputCloud(down);
+  ne.setSearchMethod(tree);
+  ne.setRadiusSearch(normal_radius);
+  ne.compute(*normals);
+  f.ms["normals"] = normal_clock.ms();
+
+  StopWatch fpfh_clock;
+  pcl::PointCloud<pcl::FPFHSignature33> fpfh;
+  if (!down->empty()) {
+    pcl::FPFHEstimation<PointT, pcl::Normal, pcl::FPFHSignature33> est;
+    est.setInputCloud(down);
+    est.setInputNormals(normals);
+    est.setSearchMethod(tree);
+    est.setRadiusSearch(fpfh_radius);
+    est.compute(fpfh);
+  }
+  f.ms["fpfh"] = fpfh_clock.ms();
+  for (std::size_t k = 0; k < fpfh.size(); ++k) {
+    const float* h = fpfh[k].histogram;
+    bool ok = std::isfinite((*normals)[k].normal_x);
+    for (int j = 0; j < 33 && ok; ++j) ok = std::isfinite(h[j]);
+    if (!ok) continue;  // no normal or no support: no descriptor
+    f.real.data.insert(f.real.data.end(), h, h + 33);
+    const auto& pt = (*down)[k];
+    f.points.emplace_back(pt.x, pt.y, pt.z);
+  }
+  f.counts["descriptors"] = static_cast<double>(f.points.size());
+  return f;
+}
+
+}  // namespace verifybench
