@@ -3,7 +3,6 @@
 #include <pcl/console/print.h>
 #include <pcl/features/normal_3d.h>
 #include <pcl/features/shot.h>
-#include <pcl/filters/voxel_grid.h>
 #include <pcl/keypoints/iss_3d.h>
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
@@ -13,6 +12,7 @@
 
 #include "core/timer.hpp"
 #include "frontend/bshot.hpp"
+#include "frontend/detail/voxel_grid.hpp"
 #include "frontend/features.hpp"
 
 namespace verifybench {
@@ -43,20 +43,7 @@ Features features_3d(const Cloud& cloud, const Pipeline3dParams& p) {
   Features f;
   f.dim = 3;
   f.descriptors = BinaryDescriptors(kShotLength);
-  f.counts["points"] = static_cast<double>(cloud.size());
-
-  StopWatch clock;
-  pcl::PointCloud<PointT>::Ptr raw(new pcl::PointCloud<PointT>);
-  raw->reserve(cloud.size());
-  for (const auto& q : cloud) raw->push_back(PointT(q.x(), q.y(), q.z()));
-  pcl::PointCloud<PointT>::Ptr down(new pcl::PointCloud<PointT>);
-  pcl::VoxelGrid<PointT> grid;
-  grid.setInputCloud(raw);
-  const auto leaf = static_cast<float>(p.voxel);
-  grid.setLeafSize(leaf, leaf, leaf);
-  grid.filter(*down);
-  f.ms["voxel"] = clock.ms();
-  f.counts["voxels"] = static_cast<double>(down->size());
+  const pcl::PointCloud<PointT>::Ptr down = detail::voxel_grid(cloud, p.voxel, f);
 
   StopWatch iss_clock;
   pcl::search::KdTree<PointT>::Ptr tree(new pcl::search::KdTree<PointT>);
