@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "cliques/detail/bbmc.hpp"
+#include "cliques/detail/cover.hpp"
 
 namespace verifybench::detail {
 
@@ -169,6 +170,7 @@ void BranchAndBound::search_packed(const Word* P, int size) {
   if (mask_.empty()) mask_.assign(static_cast<std::size_t>(W_), 0);
   const BitGraph sub = induced(g_, members, mask_);
   BranchAndBound child(sub, best_size_ - size, budget_, recolour_, infra_);
+  child.cover_ = cover_;
   child.root_ = root_;
   child.offset_ = offset_ + size;
   --budget_.nodes;  // this node is the child's root
@@ -177,6 +179,25 @@ void BranchAndBound::search_packed(const Word* P, int size) {
   if (found > 0 && size + found > best_size_) {  // the local search may have passed it meanwhile
     best_ = clique_;
     for (int k : child.best()) best_.push_back(members[static_cast<std::size_t>(k)]);
+    best_size_ = size + found;
+  }
+}
+
+bool BranchAndBound::near_clique(const Word* P, int needed) const {
+  const int size = BitGraph::count(P, W_);
+  return size >= kMinCover && size < 2 * needed + kCoverMargin;
+}
+
+void BranchAndBound::search_cover(const Word* P, int size) {
+  std::vector<int> members;
+  for_each_bit(P, W_, [&](int v) { members.push_back(v); });
+  const BitGraph sub = permuted(g_, members, budget_.deadline);
+  CoverSearch cover(sub, best_size_ - size, budget_);
+  cover.run();
+  const int found = static_cast<int>(cover.best().size());
+  if (found > 0 && size + found > best_size_) {
+    best_ = clique_;
+    for (int k : cover.best()) best_.push_back(members[static_cast<std::size_t>(k)]);
     best_size_ = size + found;
   }
 }
@@ -203,6 +224,10 @@ void BranchAndBound::expand(int depth) {
   Word* P = level(depth).data();
   Word* next = level(depth + 1).data();
   const int size = static_cast<int>(clique_.size());
+  if (cover_ && near_clique(P, best_size_ - size + 1)) {
+    search_cover(P, size);
+    return;
+  }
   const int count = colour(P, depth, std::max(1, best_size_ - size + 1));
   root_->work_ += static_cast<long long>(coloured_) * W_;  // packed subtrees count too
   if (colours_ == coloured_) {

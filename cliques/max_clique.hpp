@@ -38,7 +38,7 @@ struct CliqueSearchResult {
   bool optimal = false;     ///< proven maximum (an exact algorithm that finished)
   bool stopped = false;     ///< the time or node limit cut the search short
   long long nodes = 0;      ///< branch-and-bound nodes expanded
-  int upper_bound = 0;      ///< an upper bound on the clique number (degeneracy + 1 at least)
+  int upper_bound = 0;  ///< a proven upper bound on the clique number (its size when optimal)
   long long local_search_steps = 0;  ///< bbmcx-ls: steps of the interleaved local search
 };
 
@@ -63,7 +63,7 @@ class CliqueAlgorithms {
 void register_clique_algorithms();
 
 /// The default exact algorithm (the one behind the `clique` solver).
-inline constexpr const char* kDefaultCliqueAlgorithm = "bbmc";
+inline constexpr const char* kDefaultCliqueAlgorithm = "auto";
 CliqueSearchResult max_clique(const BitGraph& g, const CliqueSearchParams& params = {});
 
 struct MaximalCliqueParams {

@@ -25,4 +25,9 @@ inline SteadyClock::time_point deadline_after(double seconds) {
          std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(s));
 }
 
+/// Seconds from now to `deadline` (0 once past it).
+inline double seconds_until(SteadyClock::time_point deadline) {
+  return std::max(0.0, std::chrono::duration<double>(deadline - SteadyClock::now()).count());
+}
+
 }  // namespace verifybench

@@ -33,6 +33,7 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
   r.iterations = result.counters.iterations;
   r.graph_edges = result.counters.graph_edges;
   r.local_optimisations = result.counters.local_optimisations;
+  r.omega_upper_bound = result.omega_upper_bound;
   const Eigen::Matrix<double, Dim + 1, Dim + 1> M = result.T_target_source.matrix();
   for (int i = 0; i <= Dim; ++i) {
     for (int j = 0; j <= Dim; ++j) r.T_target_source.push_back(M(i, j));

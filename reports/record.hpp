@@ -41,6 +41,7 @@ struct TrialRecord {
   std::optional<bool> success;  ///< unset when there is no ground-truth motion
   double time_ms = 0, graph_ms = 0, search_ms = 0, fit_ms = 0;
   long long branch_nodes = 0, iterations = 0, graph_edges = 0, local_optimisations = 0;
+  std::optional<int> omega_upper_bound;  ///< clique solvers: proven bound on the clique number
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 

@@ -119,6 +119,7 @@ json to_json(const TrialRecord& r) {
             {"iterations", r.iterations},
             {"graph_edges", r.graph_edges},
             {"local_optimisations", r.local_optimisations},
+            {"omega_upper_bound", r.omega_upper_bound ? json(*r.omega_upper_bound) : json(nullptr)},
             {"T_target_source", r.T_target_source}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;

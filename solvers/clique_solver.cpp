@@ -29,6 +29,7 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
     result.times.search_ms = search_clock.ms();
     result.counters.branch_nodes = clique.nodes;
     result.inliers = clique.clique;
+    result.omega_upper_bound = clique.upper_bound;
 
     StopWatch fit_clock;
     if (auto T = fit_rigid(corr, result.inliers)) result.T_target_source = *T;

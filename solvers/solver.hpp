@@ -2,6 +2,7 @@
 // The one virtual boundary: a solver takes correspondences (never ground truth) and returns the
 // selected inliers, the motion and whether it would accept the pair as a loop closure.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct Result {
   std::string message;  ///< why, for Status::error
   StageTimes times;
   Counters counters;
+  /// Clique solvers: a proven upper bound on the graph's clique number (the clique's size when
+  /// proved optimal; above it when a limit stopped the search).
+  std::optional<int> omega_upper_bound;
 };
 
 class Solver {

@@ -93,6 +93,11 @@ class BranchAndBound {
     helper_share_ = share;
   }
 
+  /// Hands every node whose candidates are a near-clique (fewer than about twice the vertices a
+  /// better clique needs) to a CoverSearch (cliques/detail/cover.hpp): there the LP bound of the
+  /// complement prunes where colourings cannot.
+  void hand_off_near_cliques() { cover_ = true; }
+
   /// The subgraph induced by `vertices` (ascending ids), vertex k of the result being vertices[k].
   /// `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
   static BitGraph induced(const BitGraph& g, const std::vector<int>& vertices,
@@ -144,6 +149,13 @@ class BranchAndBound {
 
   void consult_helper();
 
+  // The hand-off test and the hand-off; near_clique() mirrors CoverSearch's own test for when its
+  // LP bound can prune (below 2 x needed + margin), and tiny sets stay here.
+  static constexpr int kMinCover = 32;
+  static constexpr int kCoverMargin = 16;
+  bool near_clique(const Word* P, int needed) const;
+  void search_cover(const Word* P, int size);
+
   void expand(int depth);
 
   const BitGraph& g_;
@@ -152,6 +164,7 @@ class BranchAndBound {
   SearchBudget& budget_;
   bool recolour_;
   bool infra_;
+  bool cover_ = false;
   BranchAndBound* root_ = this;  // the top search (its local search and incumbent)
   int offset_ = 0;               // vertices of the top search's clique above this graph
   std::vector<Word> mask_;       // search_packed(): zeroed scratch of W_ words
@@ -186,6 +199,7 @@ inline CliqueSearchResult finish(std::vector<int> clique, bool exact, const Sear
   r.nodes = budget.nodes;
   r.upper_bound = upper;
   r.optimal = (exact && !budget.stopped) || static_cast<int>(r.clique.size()) == upper;
+  if (r.optimal) r.upper_bound = static_cast<int>(r.clique.size());  // proved: the bound is omega
   return r;
 }
 
@@ -205,8 +219,9 @@ BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,
 /// core_decomposition() of max_clique.hpp, throwing OutOfTime past `deadline`.
 CoreDecomposition core_decomposition(const BitGraph& g, SteadyClock::time_point deadline);
 /// greedy_clique() of max_clique.hpp, stopping past `deadline` with the largest clique so far (a
-/// partial greedy clique included) and `stopped` set.
+/// partial greedy clique included) and `stopped` set, or after `max_starts` start vertices.
 std::vector<int> greedy_clique(const BitGraph& g, const CoreDecomposition& cd,
-                               SteadyClock::time_point deadline, bool& stopped);
+                               SteadyClock::time_point deadline, bool& stopped,
+                               int max_starts = std::numeric_limits<int>::max());
 
 }  // namespace verifybench::detail

@@ -17,7 +17,7 @@ inline CliqueSearchResult peer_result(std::optional<std::vector<int>> clique, in
     r.clique = std::move(*clique);
     std::sort(r.clique.begin(), r.clique.end());
   }
-  r.upper_bound = n;
+  r.upper_bound = r.optimal ? static_cast<int>(r.clique.size()) : n;
   return r;
 }
 

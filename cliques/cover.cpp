@@ -1,0 +1,424 @@
+// The vertex-cover search of cliques/detail/cover.hpp.
+#include "cliques/detail/cover.hpp"
+
+#include <algorithm>
+
+namespace verifybench::detail {
+
+namespace {
+// The LP bound is at least half the vertices left: while they are more than twice what a better
+// set needs (plus this margin), a matching pass can neither prune nor, as a rule, reduce.
+constexpr int kLpMargin = 16;
+
+// A node whose live vertices are at most 1/kPackRatio of the graph (and at least kMinPacked)
+// searches on them packed.
+constexpr int kPackRatio = 3;
+constexpr int kMinPacked = 32;
+
+// Cycles of the matching this short are checked for being cliques of H (a clique of k vertices
+// needs k - 1 of them in a cover, not ceil(k / 2)); longer ones rarely are.
+constexpr int kMaxCliqueCycle = 16;
+}  // namespace
+
+CoverSearch::CoverSearch(const BitGraph& g, int incumbent, SearchBudget& budget)
+    : g_(g),
+      n_(g.size()),
+      best_size_(incumbent),
+      budget_(budget),
+      root_upper_(g.size()),
+      off_(static_cast<std::size_t>(n_) + 1, 0),
+      alive_(static_cast<std::size_t>(n_), 1),
+      deg_(static_cast<std::size_t>(n_), 0),
+      alive_count_(n_),
+      mate_l_(static_cast<std::size_t>(n_), -1),
+      mate_r_(static_cast<std::size_t>(n_), -1),
+      dist_(static_cast<std::size_t>(n_), -1),
+      iter_(static_cast<std::size_t>(n_), 0),
+      z_r_(static_cast<std::size_t>(n_), 0),
+      seen_(static_cast<std::size_t>(n_), 0) {
+  const int W = g.words();
+  for (int v = 0; v < n_; ++v) {
+    const Word* row = g.row(v);
+    for (int w = 0; w < W; ++w) {
+      Word x = ~row[w];
+      if (w == W - 1 && n_ % kBits != 0) x &= (Word{1} << (n_ % kBits)) - 1;
+      if (w == v / kBits) x &= ~(Word{1} << (v % kBits));
+      for (; x; x &= x - 1) nbr_.push_back(w * kBits + lowest_bit(x));
+    }
+    off_[static_cast<std::size_t>(v) + 1] = static_cast<int>(nbr_.size());
+    deg_[static_cast<std::size_t>(v)] = off_[static_cast<std::size_t>(v) + 1] - off_[v];
+    if ((v & 255) == 255) throw_if_past(budget_.deadline);
+  }
+  // A greedy maximal matching to start from: Hopcroft-Karp then needs a few phases, not ~sqrt(n).
+  for (int u = 0; u < n_; ++u) {
+    for (int k = off_[u]; k < off_[u + 1]; ++k) {
+      const int v = nbr_[static_cast<std::size_t>(k)];
+      if (mate_r_[static_cast<std::size_t>(v)] < 0) {
+        mate_l_[static_cast<std::size_t>(u)] = v;
+        mate_r_[static_cast<std::size_t>(v)] = u;
+        break;
+      }
+    }
+  }
+}
+
+void CoverSearch::run() { node(0); }
+
+int CoverSearch::needed() const { return best_size_ - static_cast<int>(set_.size()) + 1; }
+
+bool CoverSearch::lp_can_help() const { return alive_count_ < 2 * needed() + kLpMargin; }
+
+void CoverSearch::set_left(int u, int v) {
+  log_.push_back({u, mate_l_[static_cast<std::size_t>(u)]});
+  mate_l_[static_cast<std::size_t>(u)] = v;
+}
+
+void CoverSearch::set_right(int v, int u) {
+  log_.push_back({~v, mate_r_[static_cast<std::size_t>(v)]});
+  mate_r_[static_cast<std::size_t>(v)] = u;
+}
+
+void CoverSearch::undo_matching(std::size_t log_size) {
+  while (log_.size() > log_size) {
+    const auto [at, old] = log_.back();
+    log_.pop_back();
+    if (at >= 0) {
+      mate_l_[static_cast<std::size_t>(at)] = old;
+    } else {
+      mate_r_[static_cast<std::size_t>(~at)] = old;
+    }
+  }
+}
+
+void CoverSearch::remove(int v) {
+  alive_[static_cast<std::size_t>(v)] = 0;
+  --alive_count_;
+  trail_.push_back(v);
+  for (int k = off_[v]; k < off_[v + 1]; ++k) {
+    const int u = nbr_[static_cast<std::size_t>(k)];
+    if (alive_[static_cast<std::size_t>(u)]) --deg_[static_cast<std::size_t>(u)];
+  }
+  if (const int r = mate_l_[static_cast<std::size_t>(v)]; r >= 0) {
+    set_right(r, -1);
+    set_left(v, -1);
+  }
+  if (const int l = mate_r_[static_cast<std::size_t>(v)]; l >= 0) {
+    set_left(l, -1);
+    set_right(v, -1);
+  }
+}
+
+void CoverSearch::take(int v) {
+  set_.push_back(v);
+  for (int k = off_[v]; k < off_[v + 1]; ++k) {
+    const int u = nbr_[static_cast<std::size_t>(k)];
+    if (alive_[static_cast<std::size_t>(u)]) remove(u);
+  }
+  remove(v);
+}
+
+void CoverSearch::restore(std::size_t trail_size) {
+  // In reverse order, so that every degree comes back to what it was.
+  while (trail_.size() > trail_size) {
+    const int v = trail_.back();
+    trail_.pop_back();
+    alive_[static_cast<std::size_t>(v)] = 1;
+    ++alive_count_;
+    for (int k = off_[v]; k < off_[v + 1]; ++k) {
+      const int u = nbr_[static_cast<std::size_t>(k)];
+      if (alive_[static_cast<std::size_t>(u)]) ++deg_[static_cast<std::size_t>(u)];
+    }
+  }
+}
+
+// Hopcroft-Karp layers from the unmatched u_L, up to the first layer that meets an unmatched v_R.
+// When none is met the search ran to the end: dist_ >= 0 then marks exactly the u_L reachable by
+// alternating paths (what the LP reduction reads).
+bool CoverSearch::bfs() {
+  queue_.clear();
+  for (int u = 0; u < n_; ++u) {
+    dist_[static_cast<std::size_t>(u)] = -1;
+    if (alive_[static_cast<std::size_t>(u)] && mate_l_[static_cast<std::size_t>(u)] < 0) {
+      dist_[static_cast<std::size_t>(u)] = 0;
+      queue_.push_back(u);
+    }
+  }
+  bool found = false;
+  int found_at = -1;  // the layer where an unmatched v_R was met: layers past it are not needed
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const int u = queue_[head];
+    if (found && dist_[static_cast<std::size_t>(u)] > found_at) break;
+    for (int k = off_[u]; k < off_[u + 1]; ++k) {
+      const int v = nbr_[static_cast<std::size_t>(k)];
+      if (!alive_[static_cast<std::size_t>(v)]) continue;
+      const int w = mate_r_[static_cast<std::size_t>(v)];
+      if (w < 0) {
+        if (!found) found_at = dist_[static_cast<std::size_t>(u)];
+        found = true;
+      } else if (dist_[static_cast<std::size_t>(w)] < 0) {
+        dist_[static_cast<std::size_t>(w)] = dist_[static_cast<std::size_t>(u)] + 1;
+        queue_.push_back(w);
+      }
+    }
+  }
+  return found;
+}
+
+// An augmenting path from the unmatched u_L along the layers, iteratively (paths can be as long
+// as the graph).
+bool CoverSearch::dfs(int root) {
+  stack_.assign(1, root);
+  while (!stack_.empty()) {
+    const int x = stack_.back();
+    int& at = iter_[static_cast<std::size_t>(x)];
+    if (at == off_[x + 1]) {
+      dist_[static_cast<std::size_t>(x)] = -2;  // a dead end for the rest of this phase
+      stack_.pop_back();
+      if (!stack_.empty()) ++iter_[static_cast<std::size_t>(stack_.back())];
+      continue;
+    }
+    const int v = nbr_[static_cast<std::size_t>(at)];
+    if (!alive_[static_cast<std::size_t>(v)]) {
+      ++at;
+      continue;
+    }
+    const int w = mate_r_[static_cast<std::size_t>(v)];
+    if (w < 0) {  // augment: each vertex of the stack takes the edge it stands on
+      for (const int s : stack_) {
+        const int t = nbr_[static_cast<std::size_t>(iter_[static_cast<std::size_t>(s)])];
+        set_left(s, t);
+        set_right(t, s);
+      }
+      return true;
+    }
+    if (dist_[static_cast<std::size_t>(w)] == dist_[static_cast<std::size_t>(x)] + 1) {
+      stack_.push_back(w);
+    } else {
+      ++at;
+    }
+  }
+  return false;
+}
+
+void CoverSearch::augment() {
+  while (bfs()) {
+    for (int u = 0; u < n_; ++u) iter_[static_cast<std::size_t>(u)] = off_[u];
+    for (int u = 0; u < n_; ++u) {
+      if (alive_[static_cast<std::size_t>(u)] && mate_l_[static_cast<std::size_t>(u)] < 0) dfs(u);
+    }
+  }
+}
+
+bool CoverSearch::reduce_degrees() {
+  bool changed = false;
+  for (int v = 0; v < n_; ++v) {
+    if (!alive_[static_cast<std::size_t>(v)]) continue;
+    const int d = deg_[static_cast<std::size_t>(v)];
+    if (d <= 1) {
+      take(v);  // degree 0: in the set; degree 1: in the set, its neighbour in the cover
+      changed = true;
+    } else if (alive_count_ - d < needed()) {
+      remove(v);  // with v, at most alive - d more: no set larger than the best (the k-core rule)
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+bool CoverSearch::reduce_lp() {
+  augment();
+  for (int v = 0; v < n_; ++v) z_r_[static_cast<std::size_t>(v)] = 0;
+  for (int u = 0; u < n_; ++u) {
+    if (!alive_[static_cast<std::size_t>(u)] || dist_[static_cast<std::size_t>(u)] < 0) continue;
+    for (int k = off_[u]; k < off_[u + 1]; ++k) {
+      const int v = nbr_[static_cast<std::size_t>(k)];
+      if (alive_[static_cast<std::size_t>(v)]) z_r_[static_cast<std::size_t>(v)] = 1;
+    }
+  }
+  // x_v = 1: into the cover; x_v = 0: their only neighbours are x = 1 vertices, so into the set.
+  ones_.clear();
+  zeros_.clear();
+  for (int v = 0; v < n_; ++v) {
+    if (!alive_[static_cast<std::size_t>(v)]) continue;
+    const bool in_z_left = dist_[static_cast<std::size_t>(v)] >= 0;
+    const bool in_z_right = z_r_[static_cast<std::size_t>(v)] != 0;
+    if (in_z_left && !in_z_right) zeros_.push_back(v);
+    if (!in_z_left && in_z_right) ones_.push_back(v);
+  }
+  if (ones_.empty() && zeros_.empty()) return false;
+  for (const int v : ones_) remove(v);
+  for (const int v : zeros_) {
+    set_.push_back(v);
+    remove(v);
+  }
+  return true;
+}
+
+bool CoverSearch::reduce() {
+  for (;;) {
+    const bool degrees = reduce_degrees();
+    if (!lp_can_help()) return false;
+    if (!reduce_lp() && !degrees) return true;
+  }
+}
+
+// The matching is maximum here (reduce() ended on an LP pass that removed nothing).
+int CoverSearch::cover_lower_bound() {
+  for (int v = 0; v < n_; ++v) seen_[static_cast<std::size_t>(v)] = 0;
+  int bound = 0;
+  for (int u = 0; u < n_; ++u) {  // paths: start where no matched edge comes in
+    if (!alive_[static_cast<std::size_t>(u)] || mate_r_[static_cast<std::size_t>(u)] >= 0) continue;
+    int k = 0;
+    for (int x = u; x >= 0; x = mate_l_[static_cast<std::size_t>(x)]) {
+      seen_[static_cast<std::size_t>(x)] = 1;
+      ++k;
+    }
+    bound += k / 2;
+  }
+  for (int u = 0; u < n_; ++u) {  // what is left lies on cycles
+    if (!alive_[static_cast<std::size_t>(u)] || seen_[static_cast<std::size_t>(u)]) continue;
+    cycle_.clear();
+    int x = u;
+    do {
+      seen_[static_cast<std::size_t>(x)] = 1;
+      cycle_.push_back(x);
+      x = mate_l_[static_cast<std::size_t>(x)];
+    } while (x != u);
+    const int len = static_cast<int>(cycle_.size());
+    bool clique = len >= 4 && len <= kMaxCliqueCycle;
+    for (int a = 0; clique && a < len; ++a) {
+      for (int b = a + 1; clique && b < len; ++b) {
+        clique =
+            h_adjacent(cycle_[static_cast<std::size_t>(a)], cycle_[static_cast<std::size_t>(b)]);
+      }
+    }
+    bound += clique ? len - 1 : (len + 1) / 2;
+  }
+  return bound;
+}
+
+// The subtree on the vertices left, packed into a graph of their own: the matching passes then
+// touch only live adjacency (most of a deep node's lists are vertices removed above it).
+void CoverSearch::search_packed() {
+  std::vector<int> vertices, index(static_cast<std::size_t>(n_), -1);
+  for (int v = 0; v < n_; ++v) {
+    if (alive_[static_cast<std::size_t>(v)]) {
+      index[static_cast<std::size_t>(v)] = static_cast<int>(vertices.size());
+      vertices.push_back(v);
+    }
+  }
+  const BitGraph packed = permuted(g_, vertices, budget_.deadline);
+  CoverSearch child(packed, best_size_ - static_cast<int>(set_.size()), budget_);
+  std::fill(child.mate_l_.begin(), child.mate_l_.end(), -1);
+  std::fill(child.mate_r_.begin(), child.mate_r_.end(), -1);
+  for (std::size_t k = 0; k < vertices.size(); ++k) {  // start from this node's matching
+    const int m = mate_l_[static_cast<std::size_t>(vertices[k])];
+    if (m < 0) continue;
+    const int j = index[static_cast<std::size_t>(m)];
+    child.mate_l_[k] = j;
+    child.mate_r_[static_cast<std::size_t>(j)] = static_cast<int>(k);
+  }
+  child.run();
+  if (child.best().empty()) return;
+  best_ = set_;
+  for (const int k : child.best()) best_.push_back(vertices[static_cast<std::size_t>(k)]);
+  best_size_ = static_cast<int>(best_.size());
+}
+
+// The independent sets of a disconnected graph are unions of one per component: the smaller
+// components are solved exactly first, then the largest needs only what a better set still lacks
+// (the component rule of Akiba & Iwata). The clique side of this: G is the join of the parts.
+bool CoverSearch::split_components() {
+  std::vector<std::vector<int>> parts;
+  std::vector<char> labelled(static_cast<std::size_t>(n_), 0);
+  for (int s = 0; s < n_; ++s) {
+    if (!alive_[static_cast<std::size_t>(s)] || labelled[static_cast<std::size_t>(s)]) continue;
+    std::vector<int> part{s};
+    labelled[static_cast<std::size_t>(s)] = 1;
+    for (std::size_t head = 0; head < part.size(); ++head) {
+      const int u = part[head];
+      for (int k = off_[u]; k < off_[u + 1]; ++k) {
+        const int v = nbr_[static_cast<std::size_t>(k)];
+        if (alive_[static_cast<std::size_t>(v)] && !labelled[static_cast<std::size_t>(v)]) {
+          labelled[static_cast<std::size_t>(v)] = 1;
+          part.push_back(v);
+        }
+      }
+    }
+    if (static_cast<int>(part.size()) == alive_count_) return false;  // connected
+    std::sort(part.begin(), part.end());
+    parts.push_back(std::move(part));
+  }
+  std::stable_sort(parts.begin(), parts.end(),
+                   [](const auto& a, const auto& b) { return a.size() < b.size(); });
+  std::vector<int> chosen = set_;
+  auto solve = [&](const std::vector<int>& part, int incumbent) {
+    const BitGraph packed = permuted(g_, part, budget_.deadline);
+    CoverSearch child(packed, incumbent, budget_);
+    child.run();
+    for (const int k : child.best()) chosen.push_back(part[static_cast<std::size_t>(k)]);
+    return !child.best().empty();
+  };
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    solve(parts[i], 0);  // its maximum independent set
+    if (budget_.stopped) return true;
+  }
+  const int lacking = best_size_ - static_cast<int>(chosen.size());
+  if (solve(parts.back(), std::max(0, lacking)) && static_cast<int>(chosen.size()) > best_size_) {
+    best_ = std::move(chosen);
+    best_size_ = static_cast<int>(best_.size());
+  }
+  return true;
+}
+
+int CoverSearch::branch_vertex() const {
+  int pick = -1;
+  for (int v = 0; v < n_; ++v) {
+    if (alive_[static_cast<std::size_t>(v)] &&
+        (pick < 0 || deg_[static_cast<std::size_t>(v)] > deg_[static_cast<std::size_t>(pick)])) {
+      pick = v;
+    }
+  }
+  return pick;
+}
+
+void CoverSearch::node(int depth) {
+  // A node costs a matching pass over H (up to milliseconds): the clock is read at every one.
+  if (!budget_.spend() || SteadyClock::now() >= budget_.deadline) {
+    budget_.stopped = true;
+    return;
+  }
+  const std::size_t trail_mark = trail_.size(), set_mark = set_.size();
+  const bool matched = reduce();
+  const int upper =
+      static_cast<int>(set_.size()) + alive_count_ - (matched ? cover_lower_bound() : 0);
+  if (depth == 0) root_upper_ = std::max(best_size_, upper);
+  if (upper > best_size_) {
+    if (alive_count_ == 0) {
+      best_ = set_;
+      best_size_ = static_cast<int>(set_.size());
+    } else if (split_components()) {
+      // each component solved on its own
+    } else if (depth > 0 && alive_count_ >= kMinPacked && alive_count_ * kPackRatio <= n_) {
+      search_packed();
+    } else {
+      const int v = branch_vertex();
+      const std::size_t mark = trail_.size(), log_mark = log_.size(), branch_set = set_.size();
+      remove(v);  // v in the cover
+      node(depth + 1);
+      restore(mark);
+      undo_matching(log_mark);
+      if (!budget_.stopped) {
+        take(v);  // v in the set
+        node(depth + 1);
+        restore(mark);
+        undo_matching(log_mark);
+        set_.resize(branch_set);
+      }
+    }
+  }
+  restore(trail_mark);
+  set_.resize(set_mark);
+}
+
+}  // namespace verifybench::detail
