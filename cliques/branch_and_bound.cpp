@@ -184,8 +184,8 @@ void BranchAndBound::search_packed(const Word* P, int size) {
 }
 
 bool BranchAndBound::near_clique(const Word* P, int needed) const {
-  const int size = BitGraph::count(P, W_);
-  return size >= kMinCover && size < 2 * needed + kCoverMargin;
+  if (needed < kMinCover) return false;  // small cliques: colouring bounds do well (DIMACS)
+  return BitGraph::count(P, W_) < 2 * needed + kCoverMargin;
 }
 
 void BranchAndBound::search_cover(const Word* P, int size) {

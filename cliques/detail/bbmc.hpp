@@ -150,7 +150,8 @@ class BranchAndBound {
   void consult_helper();
 
   // The hand-off test and the hand-off; near_clique() mirrors CoverSearch's own test for when its
-  // LP bound can prune (below 2 x needed + margin), and tiny sets stay here.
+  // LP bound can prune (below 2 x needed + margin); a node needing fewer than kMinCover more
+  // vertices stays here (random dense graphs: brock200_1 5 s handed off, 0.23 s coloured).
   static constexpr int kMinCover = 32;
   static constexpr int kCoverMargin = 16;
   bool near_clique(const Word* P, int needed) const;
