@@ -39,8 +39,6 @@ class CoverSearch {
   /// An upper bound on the clique number of g from the reduced root (valid once run() returned,
   /// whether or not the search finished); at least the incumbent.
   int upper_bound() const { return root_upper_; }
-  /// Edges of the complement (what the search works on).
-  long long complement_edges() const { return static_cast<long long>(nbr_.size()) / 2; }
 
  private:
   void node(int depth);
