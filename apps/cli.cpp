@@ -12,8 +12,14 @@ void add_solver_options(Options& o) {
       .add("solvers", "A,B", "clique,ransac", "solvers to run (see `verifybench list`)")
       .add("eps", "M", "0.1", "pair length tolerance of the correspondence graph, Eq. (1) [m]")
       .add("inlier-threshold", "M", "", "consensus residual threshold [m] (default: eps)")
+      .add("accept", "RULE", "pvalue",
+           "accept rule: pvalue (p < alpha against a permutation null of the pair) or count "
+           "(inliers >= --min-inliers, the paper's rule)")
+      .add("alpha", "A", "0.001", "pvalue rule: accept when p < A")
+      .add("null-draws", "K", "20",
+           "pvalue rule: permuted sets the null is fitted on (each one more solve)")
       .add("min-inliers", "K", "0",
-           "accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
+           "count rule: accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
       .add("time-limit", "S", "60", "per-solve time limit [s]; best-so-far returned past it")
       .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
       .add("threads", "T", "1",
@@ -39,6 +45,13 @@ SolverParams solver_params(const Options& o) {
   p.inlier_threshold =
       o.given("inlier-threshold") ? o.real("inlier-threshold", 1e-12, 1e12) : p.eps;
   p.min_inliers = static_cast<int>(o.integer("min-inliers", 0, 1 << 30));
+  try {
+    p.accept.rule = parse_accept_rule(o.text("accept"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--accept: ") + e.what());
+  }
+  p.accept.alpha = o.real("alpha", 1e-300, 0.999999);
+  p.accept.null_draws = static_cast<int>(o.integer("null-draws", 2, 100000));
   p.time_limit_s = o.real("time-limit", 1e-6, 1e9);
   p.max_graph_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
   p.seed = o.seed("seed");
@@ -79,6 +92,9 @@ std::vector<std::string> solver_names(const Options& o) {
 nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c) {
   nlohmann::json j = {{"eps", p.eps},
                       {"inlier_threshold", p.inlier_threshold},
+                      {"accept_rule", to_string(p.accept.rule)},
+                      {"alpha", p.accept.alpha},
+                      {"null_draws", p.accept.null_draws},
                       {"min_inliers", p.min_inliers},
                       {"accept_threshold_2d", p.accept_threshold(2)},
                       {"accept_threshold_3d", p.accept_threshold(3)},
@@ -126,9 +142,12 @@ std::pair<double, double> prior_sigmas(const Options& o) {
 
 void print_point(const std::vector<TrialRecord>& rows) {
   for (const auto& a : aggregate(rows)) {
-    std::fprintf(stderr, "  %dD n=%d outliers=%s %-8s success=%s accept=%.2f median=%.2f ms\n",
+    const std::string expected =
+        a["expected"].is_null() ? "" : " (" + a["expected"].get<std::string>() + ")";
+    std::fprintf(stderr, "  %dD n=%d outliers=%s%s %-8s success=%s accept=%.2f median=%.2f ms\n",
                  a["dim"].get<int>(), a["n"].get<int>(), a["outlier_ratio"].dump().c_str(),
-                 a["solver"].get<std::string>().c_str(), a["success_rate"].dump().c_str(),
+                 expected.c_str(), a["solver"].get<std::string>().c_str(),
+                 a["success_rate"].dump().c_str(),
                  a["accept_rate"].get<double>(),
                  a["median_time_ms"].is_null() ? 0.0 : a["median_time_ms"].get<double>());
   }

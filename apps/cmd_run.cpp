@@ -1,4 +1,5 @@
 // `verifybench run`: solvers on one correspondence dump.
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -15,7 +16,11 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   o.add("dump", "DIR", "",
         "dump folder: dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt] (required)");
   cli::add_solver_options(o);
-  o.group("dump").add("trials", "K", "1", "repeat each solver K times (timing statistics)");
+  o.group("dump")
+      .add("trials", "K", "1", "repeat each solver K times (timing statistics)")
+      .add("expected", "E", "auto",
+           "the expected decision: positive, negative, or auto (MANIFEST.tsv beside the dump; "
+           "else negative when its labels hold no true inlier; else unknown)");
   cli::add_prior_options(o, "the set (it needs a ground truth)");
   if (o.parse_or_help(args, "usage: verifybench run --dump DIR [options] --out FILE.json\n"))
     return 0;
@@ -26,10 +31,26 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
   const std::string out = o.required("out");
   const auto [prior_rot, prior_trans] = cli::prior_sigmas(o);
+  const std::string expected_text = o.text("expected");
+  if (expected_text != "auto" && expected_text != "positive" && expected_text != "negative") {
+    throw UsageError("--expected: '" + expected_text + "' is not positive, negative or auto");
+  }
   Dump dump = read_dump(dir);
+  std::optional<bool> expected;
+  if (expected_text != "auto") {
+    expected = expected_text == "positive";
+  } else {
+    expected = manifest_expected(dir);
+  }
   std::vector<TrialRecord> rows = std::visit(
       [&](auto& s) {
         validate(s);
+        s.truth.positive = expected;
+        const auto& labels = s.truth.labels;
+        if (!expected && !labels.empty() &&
+            std::find(labels.begin(), labels.end(), 1) == labels.end()) {
+          s.truth.positive = false;  // no true inlier: the sides share no motion
+        }
         if (prior_rot > 0.0) {
           if (!s.truth.T_target_source) {
             throw UsageError("--prior-rot-deg: " + dir +
@@ -47,6 +68,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   parameters["run"] = {
       {"dump", dir},
       {"trials", trials},
+      {"expected", expected_text},
       {"prior_sigma_rot_deg", prior_rot * 180.0 / M_PI},
       {"prior_sigma_trans", prior_trans},
       {"solvers", names},

@@ -40,6 +40,9 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
       .add("noise", "SIGMA", "0.01", "Gaussian noise per axis on inlier targets [m]")
       .add("extent", "M", "10", "side of the cube (square) the points are drawn in [m]")
       .add("trials", "K", "20", "sets per (dim, outlier ratio) point")
+      .add("negatives", "", "",
+           "each trial also draws a negative twin (the sides share no motion): the report scores "
+           "accept decisions (TP, FP, TN, FN, precision, recall)")
       .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)")
       .add("group-ratio", "R", "0.5", "rigid-group: wrong group size / inlier count")
       .add("grid-spacing", "M", "2", "repetitive: pillar spacing along the corridor [m]")
@@ -64,6 +67,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.noise = o.real("noise", 0.0, 1e9);
   c.extent = o.real("extent", 1e-9, 1e9);
   c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  c.negatives = o.flag("negatives");
   c.shape.kind = o.text("generator");
   c.shape.group_ratio = o.real("group-ratio", 1e-9, 1e9);
   c.shape.grid_spacing = o.real("grid-spacing", 1e-9, 1e9);
@@ -99,6 +103,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
                          {"noise", c.noise},
                          {"extent", c.extent},
                          {"trials", c.trials},
+                         {"negatives", c.negatives},
                          {"solvers", c.solvers}};
   SweepProgress point_done;
   if (!o.flag("quiet")) point_done = cli::print_point;

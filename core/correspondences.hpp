@@ -50,6 +50,9 @@ struct GroundTruth {
   /// |R^T R - I|_F of the motion as its file published it, before projection onto SO(Dim)
   /// (core/transform.hpp); 0 when it was exact or drawn.
   double rotation_residual = 0.0;
+  /// The expected decision: true for a real loop (a verifier should accept), false for a pair
+  /// whose sides share no motion (it should reject); unset when unknown.
+  std::optional<bool> positive;
 };
 
 template <int Dim>

@@ -28,4 +28,20 @@ struct InlierScores {
 InlierScores inlier_scores(const std::vector<int>& selected,
                            const std::vector<std::uint8_t>& labels);
 
+/// Geometry of a selected set, for post-fit checks of an accept decision (issue #13).
+struct SelectionGeometry {
+  /// min(distinct source points, distinct target points) among the selected: an upper bound on
+  /// the largest one-to-one subset (k-NN matching repeats sources, radius matching both sides).
+  int distinct = 0;
+  /// The smallest lever arm a rotation of the selected source points has [m]: in 3D the square
+  /// root of the two smallest eigenvalues of their covariance, summed (about 0 for a collinear
+  /// set, whose rotation about its line nothing fixes); in 2D the RMS distance to the centroid.
+  /// NaN for an empty selection.
+  double lever_arm = 0.0;
+};
+
+template <int Dim>
+SelectionGeometry selection_geometry(const Correspondences<Dim>& corr,
+                                     const std::vector<int>& selected);
+
 }  // namespace verifybench

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -238,6 +239,45 @@ Dump read_dump(const std::string& dir) {
   if (dim == 3) return read_set<3>(root, meta);
   fail(meta_file, "field dim = " + (meta.contains("dim") ? meta["dim"].dump() : "missing") +
                       "; expected 2 or 3");
+}
+
+}  // namespace verifybench
+
+namespace verifybench {
+
+std::optional<bool> manifest_expected(const std::string& dir) {
+  fs::path root(dir);
+  if (root.filename().empty()) root = root.parent_path();  // "DIR/"
+  const fs::path manifest = fs::absolute(root).parent_path() / "MANIFEST.tsv";
+  std::ifstream in(manifest);
+  if (!in) return std::nullopt;
+  auto split = [](const std::string& line) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, '\t');) cells.push_back(c);
+    return cells;
+  };
+  std::string line;
+  if (!std::getline(in, line)) return std::nullopt;
+  const auto header = split(line);
+  const auto name_col = std::find(header.begin(), header.end(), "name") - header.begin();
+  const auto exp_col = std::find(header.begin(), header.end(), "expected") - header.begin();
+  if (name_col == static_cast<long>(header.size()) || exp_col == static_cast<long>(header.size())) {
+    return std::nullopt;  // not a corpus manifest (e.g. a DIMACS one)
+  }
+  const std::string name = root.filename().string();
+  for (int number = 2; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto cells = split(line);
+    if (cells.size() <= static_cast<std::size_t>(std::max(name_col, exp_col))) continue;
+    if (cells[static_cast<std::size_t>(name_col)] != name) continue;
+    const std::string& v = cells[static_cast<std::size_t>(exp_col)];
+    if (v == "positive") return true;
+    if (v == "negative") return false;
+    input_error(manifest.string(), number,
+                "field expected = '" + v + "' is invalid; expected positive or negative");
+  }
+  return std::nullopt;
 }
 
 }  // namespace verifybench

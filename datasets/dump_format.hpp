@@ -33,4 +33,10 @@ void write_dump(const std::string& dir, const Dump& dump);
 /// read_text_dump (corr.txt). Throws InputError naming file, line, field and value.
 Dump read_dump(const std::string& dir);
 
+/// The expected decision of dump DIR from MANIFEST.tsv beside it (a corpus manifest: a header with
+/// `name` and `expected` columns, as scripts/corpus writes): true for positive, false for
+/// negative; nullopt without a manifest, without those columns or without a row for DIR. Throws
+/// InputError naming the line of an expected value that is neither.
+std::optional<bool> manifest_expected(const std::string& dir);
+
 }  // namespace verifybench

@@ -298,8 +298,10 @@ void SyntheticParams::validate() const {
 }
 
 template <int Dim>
-LabeledSet<Dim> make_synthetic(const SyntheticParams& params) {
-  params.validate();
+LabeledSet<Dim> make_synthetic(const SyntheticParams& requested) {
+  requested.validate();
+  SyntheticParams params = requested;
+  if (params.negative) params.outlier_ratio = 1.0;
   find_generator(params.kind);  // throws UnknownName listing the kinds
   const auto it = std::find_if(kinds().begin(), kinds().end(),
                                [&](const Kind& k) { return k.info.name == params.kind; });
@@ -320,7 +322,8 @@ LabeledSet<Dim> make_synthetic(const SyntheticParams& params) {
   set.corr.source.resize(Dim, params.n);
   set.corr.target.resize(Dim, params.n);
   fill(params, draw, T, set);
-  set.truth.T_target_source = T;
+  if (!params.negative) set.truth.T_target_source = T;
+  set.truth.positive = !params.negative;
   if (params.score_separation >= 0.0) {
     std::mt19937_64 rng(derive_seed(params.seed, {0x53434f52u}));
     std::normal_distribution<double> g(0.0, 1.0);

@@ -30,6 +30,11 @@ struct SyntheticParams {
   /// so inliers tend to score higher (PROSAC's input); < 0 = no scores. Drawn from their own
   /// stream, so the points do not depend on it.
   double score_separation = 1.0;
+  /// A negative pair (issue #13): two sides that share no motion. Every correspondence is an
+  /// outlier of the kind (outlier_ratio is taken as 1: unrelated points for uniform, the
+  /// repetitive corridor's shifted pillars, near-true's displaced points, ...), the set has no
+  /// true motion and is expected to be rejected.
+  bool negative = false;
   void validate() const;  ///< throws std::invalid_argument naming the field and value
 };
 
@@ -46,7 +51,8 @@ const GeneratorInfo& find_generator(const std::string& kind);
 
 /// Draws a set of `params.kind`. Common to every kind: the rotation is uniform on SO(Dim), each
 /// translation component uniform in [-max_translation, max_translation], round(n * ratio)
-/// outliers interleaved with the inliers in a random order, labels 1 for the true inliers.
+/// outliers interleaved with the inliers in a random order, labels 1 for the true inliers;
+/// truth.positive = !negative.
 /// Throws std::invalid_argument for an unknown kind (listing the known ones), a kind that does not
 /// exist in this dimension, or a bad parameter.
 template <int Dim>

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "acceptance/calibration.hpp"
 #include "core/metrics.hpp"
 #include "core/random.hpp"
 #include "core/timer.hpp"
@@ -15,9 +16,28 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
                      const LabeledSet<Dim>& set, const SolverParams& params,
                      const SuccessCriteria& criteria) {
   StopWatch clock;
-  const Result<Dim> result = solver.solve(set.corr, params);
+  Result<Dim> result = solver.solve(set.corr, params);
   TrialRecord r;
   r.time_ms = clock.ms();
+  r.accept_rule = to_string(params.accept.rule);
+  r.expected_positive = set.truth.positive;
+  if (params.accept.rule == AcceptParams::Rule::pvalue && result.status != Status::error) {
+    try {
+      const Calibration c =
+          calibrate(solver, set.corr, params, static_cast<int>(result.inliers.size()));
+      decide_calibrated(result, c, params);
+      r.p_value = c.p_value;
+      r.null_threshold = c.threshold;
+      r.null_mean = c.null.mean;
+      r.null_sd = c.null.sd;
+      r.null_draws = c.null.draws;
+      r.null_limited_draws = c.limited_draws;
+      r.calibration_ms = c.ms;
+    } catch (const std::exception& e) {
+      result.status = Status::error;
+      result.message = e.what();
+    }
+  }
   r.solver = solver_name;
   r.dim = Dim;
   r.n = static_cast<int>(set.corr.size());
@@ -39,6 +59,9 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
     for (int j = 0; j <= Dim; ++j) r.T_target_source.push_back(M(i, j));
   }
   if (result.status == Status::error) return r;
+  const SelectionGeometry geometry = selection_geometry(set.corr, result.inliers);
+  r.distinct_inliers = geometry.distinct;
+  r.lever_arm = geometry.lever_arm;
 
   if (!set.truth.labels.empty()) {
     const InlierScores s = inlier_scores(result.inliers, set.truth.labels);
@@ -80,22 +103,32 @@ void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecor
     sp.max_translation = config.extent / 2;
     sp.seed = derive_seed(config.seed, {std::uint64_t(Dim), std::uint64_t(config.n), bits_of(ratio),
                                         std::uint64_t(t)});
-    LabeledSet<Dim> set = make_synthetic<Dim>(sp);
+    std::vector<LabeledSet<Dim>> sets{make_synthetic<Dim>(sp)};
     if (config.prior_sigma_rot > 0.0 && config.prior_sigma_trans > 0.0) {
-      add_pose_prior(set, config.prior_sigma_rot, config.prior_sigma_trans, sp.seed);
+      add_pose_prior(sets[0], config.prior_sigma_rot, config.prior_sigma_trans, sp.seed);
     }
-    SolverParams params = config.params;
-    params.seed = derive_seed(sp.seed, {1});
-    for (std::size_t s = 0; s < solvers.size(); ++s) {
-      TrialRecord r = evaluate(*solvers[s], config.solvers[s], set, params, config.criteria);
-      r.dataset = "synthetic";
-      r.generator = sp.kind;
-      r.outlier_ratio = ratio;
-      r.noise = config.noise;
-      r.trial = t;
-      r.data_seed = sp.seed;
-      rows.push_back(std::move(r));
-      if (rows.back().status == "error") return;
+    std::vector<std::uint64_t> seeds{sp.seed};
+    if (config.negatives) {
+      SyntheticParams np = sp;
+      np.negative = true;
+      np.seed = derive_seed(sp.seed, {2});
+      sets.push_back(make_synthetic<Dim>(np));
+      seeds.push_back(np.seed);
+    }
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      SolverParams params = config.params;
+      params.seed = derive_seed(seeds[k], {1});
+      for (std::size_t s = 0; s < solvers.size(); ++s) {
+        TrialRecord r = evaluate(*solvers[s], config.solvers[s], sets[k], params, config.criteria);
+        r.dataset = "synthetic";
+        r.generator = sp.kind;
+        r.outlier_ratio = ratio;
+        r.noise = config.noise;
+        r.trial = t;
+        r.data_seed = seeds[k];
+        rows.push_back(std::move(r));
+        if (rows.back().status == "error") return;
+      }
     }
     if (on_trial) on_trial();
   }

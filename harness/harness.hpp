@@ -33,6 +33,9 @@ struct SweepConfig {
   double prior_sigma_rot = 0.0;    ///< [rad]
   double prior_sigma_trans = 0.0;  ///< [m]
   int trials = 20;
+  /// Each trial also draws a negative twin (SyntheticParams::negative, same kind and point), so
+  /// the report scores accept decisions (TP, FP, TN, FN); negatives carry no pose prior.
+  bool negatives = false;
   std::uint64_t seed = 1;
   SolverParams params;
   SuccessCriteria criteria;
@@ -45,7 +48,7 @@ using TrialProgress = std::function<void()>;
 
 /// Every solver sees the same drawn set in each trial. The set of trial t at (dim, n, ratio) is
 /// drawn from derive_seed(seed, {dim, n, ratio bits, t}), so it does not depend on which other
-/// points or solvers are in the sweep. Stops at the first row whose status is "error" (returning
+/// points or solvers are in the sweep; its negative twin from derive_seed(that seed, {2}). Stops at the first row whose status is "error" (returning
 /// the rows so far, that one included).
 std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress = {},
                                    const TrialProgress& on_trial = {});

@@ -74,6 +74,14 @@ def sweep_series(reports):
         if rows.empty:
             continue
         generator = doc["parameters"]["sweep"].get("generator", "uniform")
+        if "expected" in rows.columns:  # negative twins (--negatives): their false accept rate
+            negative = rows["expected"] == "negative"
+            for (dim, solver, n, ratio), g in rows[negative].groupby(["dim", "solver", "n",
+                                                                       "outlier_ratio"]):
+                panel = panels.setdefault((generator, dim), {"doc": doc, "curves": {}, "fa": {}})
+                panel.setdefault("fa", {}).setdefault((solver, n), []).append(
+                    {"ratio": ratio, "fa": g["accepted"].astype(bool).mean()})
+            rows = rows[~negative]
         for (dim, solver, n, ratio), g in rows.groupby(["dim", "solver", "n", "outlier_ratio"]):
             panel = panels.setdefault((generator, dim), {"doc": doc, "curves": {}})
             judged = g["success"].dropna()
@@ -121,9 +129,16 @@ def plot_sweeps(reports, out_dir, stem):
                     ax.plot(x, [p["median"] for p in pts], **kw)
                     ax.fill_between(x, [p["q1"] for p in pts], [p["q3"] for p in pts],
                                     color=colour[solver], alpha=0.15, linewidth=0)
+            for (solver, n), pts in sorted(panels[key].get("fa", {}).items()):
+                if kind != "success":
+                    break
+                pts = sorted(pts, key=lambda p: p["ratio"])
+                ax.plot([p["ratio"] + offset.get(solver, 0) for p in pts], [p["fa"] for p in pts],
+                        color=colour.get(solver, "k"), marker="x", linestyle=":", markersize=4,
+                        label=f"{solver} (n={n}): false accepts of negatives")
             ax.set_xlabel("outlier ratio")
             if kind == "success":
-                ax.set_ylabel("success rate (bars: 95% Wilson interval)")
+                ax.set_ylabel("success rate (bars: 95% Wilson interval); dotted: false accepts")
                 ax.set_ylim(-0.03, 1.03)
                 ax.grid(True, alpha=0.3)
             else:

@@ -42,6 +42,16 @@ struct TrialRecord {
   double time_ms = 0, graph_ms = 0, search_ms = 0, fit_ms = 0;
   long long branch_nodes = 0, iterations = 0, graph_edges = 0, local_optimisations = 0;
   std::optional<int> omega_upper_bound;  ///< clique solvers: proven bound on the clique number
+  // Acceptance (issue #13).
+  std::string accept_rule;                 ///< pvalue | count
+  std::optional<bool> expected_positive;   ///< the expected decision, when known
+  double p_value = kNaN;                   ///< pvalue rule: P(chance score >= inliers)
+  std::optional<int> null_threshold;       ///< pvalue rule: smallest score accepted at alpha
+  double null_mean = kNaN, null_sd = kNaN; ///< of the null scores
+  int null_draws = 0, null_limited_draws = 0;
+  double calibration_ms = 0;  ///< the null solves (not in time_ms)
+  std::optional<int> distinct_inliers;  ///< selection_geometry().distinct of the selected set
+  double lever_arm = kNaN;              ///< selection_geometry().lever_arm [m]
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 

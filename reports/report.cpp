@@ -90,6 +90,57 @@ json make_context(const std::vector<std::string>& command_line, std::uint64_t se
           {"seed", seed}};
 }
 
+const char* decision_of(const TrialRecord& r) {
+  if (!r.expected_positive || r.status == "error") return nullptr;
+  if (*r.expected_positive) return r.accepted ? "TP" : "FN";
+  return r.accepted ? "FP" : "TN";
+}
+
+namespace {
+
+struct DecisionCounts {
+  int tp = 0, fp = 0, tn = 0, fn = 0;
+  void add(const TrialRecord& r) {
+    const char* d = decision_of(r);
+    if (!d) return;
+    const std::string s = d;
+    tp += s == "TP";
+    fp += s == "FP";
+    tn += s == "TN";
+    fn += s == "FN";
+  }
+  json to_json() const {
+    auto ratio = [](int a, int b) { return b > 0 ? json(double(a) / b) : json(nullptr); };
+    const json precision = ratio(tp, tp + fp), recall = ratio(tp, tp + fn);
+    json f1 = nullptr;
+    if (tp > 0) f1 = 2.0 * tp / (2.0 * tp + fp + fn);
+    else if (tp + fp + fn > 0) f1 = 0.0;
+    return {{"tp", tp},         {"fp", fp},       {"tn", tn},
+            {"fn", fn},         {"precision", precision}, {"recall", recall},
+            {"f1", f1},
+            {"false_accept_rate", ratio(fp, fp + tn)}};
+  }
+};
+
+}  // namespace
+
+json decisions(const std::vector<TrialRecord>& rows) {
+  std::map<std::string, DecisionCounts> by_solver;
+  std::vector<std::string> order;
+  for (const auto& r : rows) {
+    if (!decision_of(r)) continue;
+    if (!by_solver.count(r.solver)) order.push_back(r.solver);
+    by_solver[r.solver].add(r);
+  }
+  json out = json::array();
+  for (const auto& name : order) {
+    json j = by_solver[name].to_json();
+    j["solver"] = name;
+    out.push_back(std::move(j));
+  }
+  return out;
+}
+
 json to_json(const TrialRecord& r) {
   json j = {{"solver", r.solver},
             {"dataset", r.dataset},
@@ -120,18 +171,33 @@ json to_json(const TrialRecord& r) {
             {"graph_edges", r.graph_edges},
             {"local_optimisations", r.local_optimisations},
             {"omega_upper_bound", r.omega_upper_bound ? json(*r.omega_upper_bound) : json(nullptr)},
+            {"accept_rule", r.accept_rule},
+            {"expected", r.expected_positive ? json(*r.expected_positive ? "positive" : "negative")
+                                             : json(nullptr)},
+            {"decision", decision_of(r) ? json(decision_of(r)) : json(nullptr)},
+            {"p_value", number_or_null(r.p_value)},
+            {"null_threshold", r.null_threshold ? json(*r.null_threshold) : json(nullptr)},
+            {"null_mean", number_or_null(r.null_mean)},
+            {"null_sd", number_or_null(r.null_sd)},
+            {"null_draws", r.null_draws},
+            {"null_limited_draws", r.null_limited_draws},
+            {"calibration_ms", r.calibration_ms},
+            {"distinct_inliers", r.distinct_inliers ? json(*r.distinct_inliers) : json(nullptr)},
+            {"lever_arm", number_or_null(r.lever_arm)},
             {"T_target_source", r.T_target_source}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;
 }
 
 json aggregate(const std::vector<TrialRecord>& rows) {
-  using Key = std::tuple<std::string, std::string, std::string, int, int, double, double>;
+  using Key = std::tuple<std::string, std::string, std::string, int, int, double, double, int>;
   auto opt = [](const std::optional<double>& v) { return v ? *v : -1.0; };
+  auto expected = [](const TrialRecord& r) { return r.expected_positive ? int(*r.expected_positive) : -1; };
   std::map<Key, std::vector<const TrialRecord*>> groups;
   std::vector<Key> first_seen;  // keep the rows' order in the output
   for (const auto& r : rows) {
-    Key key{r.solver, r.dataset, r.generator, r.dim, r.n, opt(r.outlier_ratio), opt(r.noise)};
+    Key key{r.solver, r.dataset, r.generator, r.dim, r.n, opt(r.outlier_ratio), opt(r.noise),
+            expected(r)};
     auto& g = groups[key];
     if (g.empty()) first_seen.push_back(key);
     g.push_back(&r);
@@ -140,7 +206,8 @@ json aggregate(const std::vector<TrialRecord>& rows) {
   for (const Key& key : first_seen) {
     const auto& g = groups[key];
     const TrialRecord& head = *g.front();
-    std::vector<double> times, rot, trans, inliers;
+    std::vector<double> times, rot, trans, inliers, calibration;
+    DecisionCounts counts;
     int accepted = 0, judged = 0, succeeded = 0, errors = 0, limited = 0;
     for (const TrialRecord* r : g) {
       times.push_back(r->time_ms);
@@ -148,6 +215,8 @@ json aggregate(const std::vector<TrialRecord>& rows) {
       trans.push_back(r->translation_error);
       inliers.push_back(r->inliers);
       accepted += r->accepted;
+      calibration.push_back(r->calibration_ms);
+      counts.add(*r);
       errors += r->status == "error";
       limited += r->status == "time_limit";
       if (r->success) {
@@ -172,7 +241,12 @@ json aggregate(const std::vector<TrialRecord>& rows) {
          {"p90_time_ms", percentile_nearest_rank(times, 90.0)},
          {"median_inliers", median(inliers)},
          {"median_rotation_error_deg", median(rot)},
-         {"median_translation_error", median(trans)}});
+         {"median_translation_error", median(trans)},
+         {"expected", head.expected_positive
+                          ? json(*head.expected_positive ? "positive" : "negative")
+                          : json(nullptr)},
+         {"median_calibration_ms", median(calibration)},
+         {"decisions", counts.to_json()}});
   }
   return out;
 }
@@ -185,7 +259,8 @@ json make_report(const json& context, const json& parameters,
           {"context", context},
           {"parameters", parameters},
           {"results", std::move(results)},
-          {"aggregates", aggregate(rows)}};
+          {"aggregates", aggregate(rows)},
+          {"decisions", decisions(rows)}};
 }
 
 namespace {

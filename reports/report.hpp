@@ -1,7 +1,8 @@
 #pragma once
 // Versioned JSON reports. Layout (schema_version 1):
 //   { "schema_version": 1, "context": {...}, "parameters": {...},
-//     "results": [TrialRecord...], "aggregates": [per solver x setting summaries] }
+//     "results": [TrialRecord...], "aggregates": [per solver x setting summaries],
+//     "decisions": [per solver accept-decision scores] }
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -17,10 +18,17 @@ nlohmann::json make_context(const std::vector<std::string>& command_line, std::u
 
 nlohmann::json to_json(const TrialRecord& row);
 
-/// Groups rows by (solver, dataset, dim, n, outlier_ratio, noise) and summarises each group:
-/// trials, accept_rate, success_rate (null without ground truth), median and p90 time, median
-/// errors. Medians average the two middle values; p90 is the nearest-rank percentile.
+/// Groups rows by (solver, dataset, dim, n, outlier_ratio, noise, expected) and summarises each
+/// group: trials, accept_rate, success_rate (null without ground truth), median and p90 time, median
+/// errors, median calibration time, decision counts. Medians average the two middle values; p90 is the nearest-rank percentile.
 nlohmann::json aggregate(const std::vector<TrialRecord>& rows);
+
+/// "TP" | "FP" | "TN" | "FN" for a row whose expected decision is known (error rows: none).
+const char* decision_of(const TrialRecord& row);
+
+/// Per solver over every row with an expected decision: tp, fp, tn, fn, precision, recall, f1,
+/// false_accept_rate (null where a ratio has no denominator).
+nlohmann::json decisions(const std::vector<TrialRecord>& rows);
 
 nlohmann::json make_report(const nlohmann::json& context, const nlohmann::json& parameters,
                            const std::vector<TrialRecord>& rows);

@@ -3,7 +3,9 @@
 
 For each (generator, dimension, n, pose prior) found in the reports' aggregates, one markdown table: a row per
 solver, a column per outlier ratio, each cell "success rate / median time in ms" (success as the
-report defines it; "-" when the point has no ground truth). Nothing is recomputed.
+report defines it; "-" when the point has no ground truth), then "FA x" when the sweep drew
+negative twins (--negatives): the rate at which they were falsely accepted. Nothing is
+recomputed.
 """
 import os
 import sys
@@ -18,7 +20,7 @@ def fail(msg):
 
 def main(argv):
     paths = report_io.parser("robustness_table", __doc__).parse_args(argv).reports
-    groups = {}
+    groups, negatives = {}, {}
     for path in paths:
         doc = report_io.load_report("robustness_table", path)
         sweep = doc.get("parameters", {}).get("sweep", {})
@@ -30,7 +32,11 @@ def main(argv):
             if a.get("outlier_ratio") is None:
                 continue
             key = (a.get("generator") or "uniform", a["dim"], a["n"], prior)
-            groups.setdefault(key, {}).setdefault(a["solver"], {})[a["outlier_ratio"]] = a
+            cells = groups.setdefault(key, {}).setdefault(a["solver"], {})
+            if a.get("expected") == "negative":
+                negatives.setdefault(key, {}).setdefault(a["solver"], {})[a["outlier_ratio"]] = a
+            else:
+                cells[a["outlier_ratio"]] = a
     if not groups:
         fail("no sweep aggregates in the reports")
     for (gen, dim, n, prior), by_solver in groups.items():
@@ -48,8 +54,10 @@ def main(argv):
                 s = a.get("success_rate")
                 t = a.get("median_time_ms")
                 limited = " (T)" if a.get("time_limited") else ""
+                neg = negatives.get((gen, dim, n, prior), {}).get(solver, {}).get(r)
+                fa = f", FA {neg['accept_rate']:.2f}" if neg else ""
                 row.append(("-" if s is None else f"{s:.2f}") + " / " +
-                           ("-" if t is None else f"{t:.3g}") + limited)
+                           ("-" if t is None else f"{t:.3g}") + limited + fa)
             print(f"| {solver} | " + " | ".join(row) + " |")
 
 

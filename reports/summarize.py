@@ -27,6 +27,9 @@ def main(argv):
         frames = []
         for path, doc in docs:
             f = report_io.aggregates_frame(doc)
+            if "decisions" in f.columns:  # nested counts -> decisions_tp, decisions_fp, ...
+                nested = pd.json_normalize(f.pop("decisions").tolist()).add_prefix("decisions_")
+                f = pd.concat([f, nested], axis=1)
             f.insert(0, "report", path)
             frames.append(f)
         pd.concat(frames, ignore_index=True).to_csv(sys.stdout, index=False)
@@ -39,12 +42,12 @@ def main(argv):
             print(f"| {a.get('algorithm')} | {a.get('graphs')} | {a.get('proven')} | {a.get('correct')} "
                   f"| {fmt(a.get('total_time_ms'), '.2f')} | {fmt(a.get('median_time_ms'), '.2f')} |")
         return
-    print("| dataset | dim | n | outliers | solver | trials | success | accepted | median ms | p90 ms "
-          "| median inliers | median rot err (deg) | median trans err |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| dataset | dim | n | outliers | solver | expected | trials | success | accepted | median ms "
+          "| p90 ms | median inliers | median rot err (deg) | median trans err |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for a in aggs:
         print(f"| {a['dataset'].split('/')[-1]} | {a['dim']} | {a['n']} | {fmt(a['outlier_ratio'], '.2f')} "
-              f"| {a['solver']} | {a['trials']} | {fmt(a['success_rate'], '.2f')} "
+              f"| {a['solver']} | {a.get('expected') or '-'} | {a['trials']} | {fmt(a['success_rate'], '.2f')} "
               f"| {fmt(a['accept_rate'], '.2f')} | {fmt(a['median_time_ms'], '.2f')} "
               f"| {fmt(a['p90_time_ms'], '.2f')} | {fmt(a['median_inliers'], '.0f')} "
               f"| {fmt(a['median_rotation_error_deg'], '.3f')} | {fmt(a['median_translation_error'], '.4f')} |")

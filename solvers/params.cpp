@@ -40,12 +40,24 @@ void require(bool ok, const std::string& field, T value, const std::string& expe
 
 }  // namespace
 
+const char* to_string(AcceptParams::Rule rule) {
+  return rule == AcceptParams::Rule::count ? "count" : "pvalue";
+}
+
+AcceptParams::Rule parse_accept_rule(const std::string& name) {
+  if (name == "pvalue") return AcceptParams::Rule::pvalue;
+  if (name == "count") return AcceptParams::Rule::count;
+  throw std::invalid_argument("accept rule '" + name + "' is unknown (known: pvalue, count)");
+}
+
 void SolverParams::validate() const {
   require(eps > 0.0 && std::isfinite(eps), "eps", eps, "a finite value > 0");
   require(inlier_threshold > 0.0 && std::isfinite(inlier_threshold), "inlier_threshold",
           inlier_threshold, "a finite value > 0");
   require(min_inliers >= 0, "min_inliers", min_inliers, "an integer >= 0 (0 = paper default)");
   require(time_limit_s > 0.0, "time_limit_s", time_limit_s, "a value > 0");
+  require(accept.alpha > 0.0 && accept.alpha < 1.0, "alpha", accept.alpha, "a value in (0, 1)");
+  require(accept.null_draws >= 2, "null_draws", accept.null_draws, "an integer >= 2");
   require(threads >= 0, "threads", threads, "an integer >= 0 (0 = all cores)");
   for (const ParamFamily& family : param_families()) {
     for (const ParamField& f : family.fields) {

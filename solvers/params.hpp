@@ -26,6 +26,19 @@ struct JcbbParams {
   double confidence = 0.95;  ///< level of the chi-square gates, in (0, 1)
 };
 
+/// How a pair is accepted as a loop closure (issue #13). `count` is the paper's rule (|inliers| >=
+/// min_inliers); `pvalue` accepts when the score beats a per-pair permutation null at level alpha
+/// (acceptance/calibration.hpp; applied by the harness, which re-runs the solver on the null sets).
+struct AcceptParams {
+  enum class Rule { pvalue, count };
+  Rule rule = Rule::pvalue;
+  double alpha = 0.001;  ///< accept when p < alpha, in (0, 1)
+  int null_draws = 20;   ///< permuted sets the null is fitted on, >= 2
+};
+const char* to_string(AcceptParams::Rule rule);
+/// "pvalue" | "count"; throws std::invalid_argument naming the value otherwise.
+AcceptParams::Rule parse_accept_rule(const std::string& name);
+
 struct SolverParams {
   double eps = 0.1;  ///< pair length tolerance of the correspondence graph, Eq. (1) [m]
   double inlier_threshold = 0.1;  ///< residual ||T m - q|| of a consensus inlier [m]
@@ -37,6 +50,7 @@ struct SolverParams {
   RansacParams ransac;
   MacParams mac;
   JcbbParams jcbb;
+  AcceptParams accept;
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;

@@ -49,8 +49,19 @@ if $py "$src/reports/real_table.py" "$out/missing.json" 2>"$out/err"; then
   echo "missing report accepted"; exit 1
 fi
 grep -q "real_table: error: .*missing.json" "$out/err" || { cat "$out/err"; exit 1; }
+# Accept decisions: a sweep with negative twins scored per solver and rule, with its ROC / PR plot.
+"$VERIFYBENCH" sweep --dim 3 --n 60 --outliers 0.5 --trials 3 --negatives --quiet \
+  --out "$out/neg.json" >/dev/null
+$py "$src/reports/decisions.py" "$out/neg.json" --rows --plot "$out/plots/decisions.png" > "$out/dec.md"
+grep -q '^| clique | p < 0.001 | ' "$out/dec.md" && grep -q '^| clique | count >= 5/10 | ' "$out/dec.md" ||
+  { echo "decisions table:"; cat "$out/dec.md"; exit 1; }
+is_png "$out/plots/decisions.png"
+if $py "$src/reports/decisions.py" "$out/d.json" 2>"$out/err"; then
+  echo "a report without expected decisions was scored"; exit 1
+fi
+grep -q "decisions: error: no rows with an expected decision" "$out/err" || { cat "$out/err"; exit 1; }
 # Every script answers --help.
-for s in plot_report summarize robustness_table real_table check_schema; do
+for s in plot_report summarize robustness_table real_table check_schema decisions; do
   $py "$src/reports/$s.py" --help > "$out/help"
   grep -q "usage: $s.py" "$out/help" || { echo "$s.py --help"; exit 1; }
 done
@@ -62,7 +73,8 @@ printf '1 0 0 1\n0 1 0 0\n0 0 1 0\n0 0 0 1\n' > "$out/dump/GTmat.txt"
 $py "$src/reports/plot_report.py" "$out/run.json" --out-dir "$out/plots" >/dev/null
 is_png "$out/plots/run_dump.png"; is_pdf "$out/plots/run_dump.pdf"
 # Every kind of report the CLI writes conforms to the checked-in schema, and a broken one does not.
-$py "$src/reports/check_schema.py" "$out/r.json" "$out/rep.json" "$out/d.json" "$out/run.json" >"$out/schema"
+$py "$src/reports/check_schema.py" "$out/r.json" "$out/rep.json" "$out/d.json" "$out/run.json" \
+  "$out/neg.json" >"$out/schema"
 $py -c "import json, sys; d = json.load(open(sys.argv[1])); d['results'][0]['status'] = 'fine'; \
 json.dump(d, open(sys.argv[2], 'w'))" "$out/run.json" "$out/broken.json"
 if $py "$src/reports/check_schema.py" "$out/broken.json" >"$out/schema"; then

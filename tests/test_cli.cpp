@@ -58,6 +58,10 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
   expect_usage_error("sweep --generator blobs " + kOut, "unknown kind 'blobs' (known: uniform");
   expect_usage_error("sweep --generator bev-orb --dim 2,3 " + kOut, "bev-orb does not exist in 3D");
   expect_usage_error("sweep --prior-rot-deg 2 " + kOut, "--prior-rot-deg and --prior-trans");
+  expect_usage_error("sweep --accept vote " + kOut, "accept rule 'vote' is unknown");
+  expect_usage_error("sweep --alpha 0 " + kOut, "--alpha: '0' is outside");
+  expect_usage_error("sweep --null-draws 1 " + kOut, "--null-draws: '1' is outside");
+  expect_usage_error("run --dump x --expected maybe " + kOut, "--expected: 'maybe'");
   expect_usage_error("sweep --overlap 0 " + kOut, "--overlap: '0' is outside");
   expect_usage_error("sweep --jcbb-confidence 1 " + kOut, "--jcbb-confidence");
   if (VB_BUILT_FRONTEND) {
@@ -131,6 +135,38 @@ TEST(Cli, ListAndHelp) {
     EXPECT_EQ(r.code, 0) << cmd;
     EXPECT_NE(r.output.find("usage"), std::string::npos) << cmd;
   }
+}
+
+TEST(Cli, SweepWithNegativesScoresEveryDecision) {
+  // Each trial draws a positive and its negative twin: per solver, TP + FN and FP + TN both equal
+  // the number of (dim, ratio, trial) points, under either rule.
+  const fs::path out = fs::temp_directory_path() / "vb_cli_negatives.json";
+  for (const std::string rule : {"pvalue", "count"}) {
+    fs::remove(out);
+    const CliRun r = run("sweep --dim 2,3 --n 80 --outliers 0.5 --trials 3 --negatives --accept " +
+                         rule + " --quiet --out " + out.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out);
+    const auto doc = nlohmann::json::parse(in);
+    EXPECT_EQ(doc["parameters"]["accept_rule"], rule);
+    ASSERT_EQ(doc["decisions"].size(), 2u);  // clique, ransac
+    for (const auto& d : doc["decisions"]) {
+      EXPECT_EQ(d["tp"].get<int>() + d["fn"].get<int>(), 6) << d;
+      EXPECT_EQ(d["fp"].get<int>() + d["tn"].get<int>(), 6) << d;
+    }
+    int negatives = 0;
+    for (const auto& row : doc["results"]) {
+      EXPECT_EQ(row["accept_rule"], rule);
+      if (row["expected"] == "negative") {
+        ++negatives;
+        EXPECT_TRUE(row["success"].is_null());
+        EXPECT_EQ(row["decision"], row["accepted"].get<bool>() ? "FP" : "TN");
+      }
+      EXPECT_EQ(row["p_value"].is_null(), rule == "count");
+    }
+    EXPECT_EQ(negatives, 12);
+  }
+  fs::remove(out);
 }
 
 TEST(Cli, SweepWritesAParsableReport) {

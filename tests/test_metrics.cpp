@@ -47,6 +47,41 @@ TEST(Metrics, InlierScoresByHand) {
   EXPECT_THROW(inlier_scores({8}, labels), std::out_of_range);
 }
 
+TEST(Metrics, SelectionGeometryOfKnownShapes) {
+  // Points on a line along x (+-5 m), sources repeated twice: the lever arm about that line is 0,
+  // only 6 distinct sources. Then a box of half-sides (1, 2, 4) at its 8 corners: covariance
+  // diag(1, 4, 16), so the lever is sqrt(1 + 4) = sqrt(5).
+  Correspondences<3> c;
+  c.source.resize(3, 20);
+  c.target.resize(3, 20);
+  for (int i = 0; i < 12; ++i) {
+    c.source.col(i) = Eigen::Vector3d(-5.0 + 2.0 * (i / 2), 1.0, 2.0);
+    c.target.col(i) = Eigen::Vector3d(i, 0, 0);
+  }
+  for (int k = 0; k < 8; ++k) {
+    c.source.col(12 + k) = Eigen::Vector3d(k & 1 ? 1 : -1, k & 2 ? 2 : -2, k & 4 ? 4 : -4);
+    c.target.col(12 + k) = Eigen::Vector3d(0, k, 0);
+  }
+  std::vector<int> line(12), box(8);
+  for (int i = 0; i < 12; ++i) line[i] = i;
+  for (int k = 0; k < 8; ++k) box[k] = 12 + k;
+  const SelectionGeometry l = selection_geometry(c, line);
+  EXPECT_EQ(l.distinct, 6);
+  EXPECT_NEAR(l.lever_arm, 0.0, 1e-6);
+  const SelectionGeometry b = selection_geometry(c, box);
+  EXPECT_EQ(b.distinct, 8);
+  EXPECT_NEAR(b.lever_arm, std::sqrt(5.0), 1e-12);
+  EXPECT_TRUE(std::isnan(selection_geometry(c, {}).lever_arm));
+  // 2D: a square of half-side 3 has RMS radius sqrt(18).
+  Correspondences<2> s;
+  s.source.resize(2, 4);
+  s.target = Eigen::Matrix2Xd::Zero(2, 4);
+  s.source << 3, -3, 3, -3, 3, 3, -3, -3;
+  const SelectionGeometry q = selection_geometry(s, {0, 1, 2, 3});
+  EXPECT_NEAR(q.lever_arm, std::sqrt(18.0), 1e-12);
+  EXPECT_EQ(q.distinct, 1);  // every target the same point
+}
+
 }  // namespace
 }  // namespace verifybench
 

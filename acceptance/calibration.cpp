@@ -1,0 +1,111 @@
+#include "acceptance/calibration.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+
+#include "core/random.hpp"
+#include "core/timer.hpp"
+
+namespace verifybench {
+
+template <int Dim>
+Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint64_t seed) {
+  const auto n = static_cast<int>(corr.size());
+  // Group identical target columns: sort indices by coordinates, then number the runs.
+  std::vector<int> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](int a, int b) {
+    for (int d = 0; d < Dim; ++d) {
+      if (corr.target(d, a) != corr.target(d, b)) return corr.target(d, a) < corr.target(d, b);
+    }
+    return a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  std::vector<int> group(static_cast<std::size_t>(n)), first;  // first[g]: a member of group g
+  for (int k = 0; k < n; ++k) {
+    const int i = order[static_cast<std::size_t>(k)];
+    if (k == 0 || corr.target.col(i) != corr.target.col(order[static_cast<std::size_t>(k - 1)])) {
+      first.push_back(i);
+    }
+    group[static_cast<std::size_t>(i)] = static_cast<int>(first.size()) - 1;
+  }
+  std::vector<int> image(first.size());
+  std::iota(image.begin(), image.end(), 0);
+  std::mt19937_64 rng(seed);
+  std::shuffle(image.begin(), image.end(), rng);
+  Correspondences<Dim> out = corr;
+  for (int i = 0; i < n; ++i) {
+    const int g = image[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])];
+    out.target.col(i) = corr.target.col(first[static_cast<std::size_t>(g)]);
+  }
+  return out;
+}
+
+template <int Dim>
+Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
+                      const SolverParams& params, int observed) {
+  StopWatch clock;
+  const int draws = params.accept.null_draws;
+  const double alpha = params.accept.alpha;
+  SolverParams inner = params;
+  inner.accept.rule = AcceptParams::Rule::count;
+  Calibration c;
+  std::vector<int> scores;
+  // One draw after another (peers fork, which a thread pool would make unsafe); each solve still
+  // uses params.threads for its own parallel parts.
+  for (int k = 0; k < draws; ++k) {
+    const std::uint64_t s = derive_seed(params.seed, {kNullStream, std::uint64_t(k)});
+    SolverParams p = inner;
+    p.seed = derive_seed(s, {1});
+    const Result<Dim> r = solver.solve(permute_targets(corr, s), p);
+    if (r.status == Status::error) {
+      throw std::runtime_error("null model: permuted set " + std::to_string(k) +
+                               " failed: " + r.message);
+    }
+    int score = static_cast<int>(r.inliers.size());
+    if (r.status == Status::time_limit) {
+      ++c.limited_draws;
+      if (r.omega_upper_bound) score = std::max(score, *r.omega_upper_bound);
+    }
+    scores.push_back(score);
+    const int done = k + 1;
+    if (done < 2) continue;
+    // Early stops that cannot change the decision of all K draws: a draw that reaches the
+    // observed score keeps p >= 2 / (K + 1) (the permutation floor of p_value) ...
+    if (score >= observed && 2.0 / (draws + 1.0) >= alpha) break;
+    // ... and a score beyond every draw, rejected even by a cautious fit of the draws so far.
+    if (done >= kMinDrawsToAccept && done < draws && cautious_fit(scores).p_value(observed) < alpha) {
+      break;
+    }
+  }
+  c.null = fit_null(scores);
+  c.p_value = c.null.p_value(observed);
+  c.threshold = c.null.threshold(alpha);
+  c.ms = clock.ms();
+  return c;
+}
+
+template <int Dim>
+void decide_calibrated(Result<Dim>& result, const Calibration& calibration,
+                       const SolverParams& params) {
+  if (params.accept.rule != AcceptParams::Rule::pvalue || result.status == Status::error) return;
+  const int minimal = Dim == 2 ? 2 : 3;  // points that fix a rigid motion
+  result.accepted = calibration.p_value < params.accept.alpha &&
+                    static_cast<int>(result.inliers.size()) >= minimal;
+  if (result.status != Status::time_limit) {
+    result.status = result.accepted ? Status::ok : Status::rejected;
+  }
+}
+
+#define VB_INSTANTIATE(D)                                                                  \
+  template Correspondences<D> permute_targets<D>(const Correspondences<D>&, std::uint64_t); \
+  template Calibration calibrate<D>(const Solver&, const Correspondences<D>&,               \
+                                    const SolverParams&, int);                              \
+  template void decide_calibrated<D>(Result<D>&, const Calibration&, const SolverParams&);
+VB_INSTANTIATE(2)
+VB_INSTANTIATE(3)
+#undef VB_INSTANTIATE
+
+}  // namespace verifybench

@@ -1,0 +1,52 @@
+#pragma once
+// The calibrated accept rule (issue #13): the same solver, run on K sets whose targets are
+// re-paired at random, gives the chance distribution of its score for this pair (both clouds'
+// geometry, n, eps and the matching's many-to-one structure kept); the pair is accepted when its
+// own score has p < alpha under the Gumbel law fitted to those K scores (null_model.hpp).
+#include <cstdint>
+#include <vector>
+
+#include "acceptance/null_model.hpp"
+#include "core/correspondences.hpp"
+#include "solvers/solver.hpp"
+
+namespace verifybench {
+
+/// The permutation null's set: each distinct target point is replaced by another distinct target
+/// point of the set (one seeded permutation), so correspondences that shared a target still share
+/// one, and sources, scores and the prior stay as they were.
+template <int Dim>
+Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint64_t seed);
+
+struct Calibration {
+  NullFit null;
+  double p_value = 1.0;
+  int threshold = 0;        ///< the smallest score accepted at alpha
+  int limited_draws = 0;    ///< null solves stopped by the time limit (their upper bound counted)
+  double ms = 0.0;          ///< wall time of the null solves
+};
+
+/// Runs `solver` on up to params.accept.null_draws = K permuted sets (draw k from
+/// derive_seed(params.seed, {kNullStream, k}); the solver's own seed derived the same way) and
+/// scores `observed` against them. Stops early where the decision is already known: once a draw
+/// reaches `observed` (p >= 2 / (K + 1) >= alpha from then on), or after kMinDrawsToAccept draws
+/// when even cautious_fit() puts `observed` below alpha; null.draws says how many ran. A null solve stopped by the time limit counts with its proven
+/// upper bound when it has one (clique solvers), so a limit never makes chance look smaller.
+/// Throws std::runtime_error when a null solve fails.
+template <int Dim>
+Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
+                      const SolverParams& params, int observed);
+
+/// Applies the rule to a finished solve: under `count` leaves the solver's decision; under
+/// `pvalue` accepts when p < alpha and the inliers can fix a motion (2 in 2D, 3 in 3D), and sets
+/// status ok / rejected to match (time_limit and error stay).
+template <int Dim>
+void decide_calibrated(Result<Dim>& result, const Calibration& calibration,
+                       const SolverParams& params);
+
+/// Draws before an early accept.
+inline constexpr int kMinDrawsToAccept = 5;
+
+inline constexpr std::uint64_t kNullStream = 0x6e756c6cull;  // "null"
+
+}  // namespace verifybench

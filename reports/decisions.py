@@ -1,0 +1,163 @@
+"""Scores accept decisions over one or more reports (issue #13): per solver, TP / FP / TN / FN,
+precision, recall and F1 under the calibrated rule the reports ran with (accepted, p < alpha) and
+under the paper's fixed count (inliers >= K; K = 5 in 3D, 10 in 2D unless --count), with the
+median solve and calibration times. Only rows with an expected decision (positive / negative)
+count; error rows are left out and counted apart.
+
+    /usr/bin/python3 reports/decisions.py out/acceptance/*.json [--count K] [--rows]
+        [--plot decisions.png]
+
+--rows prints one line per (dump, solver): expected, inliers, the null's mean and threshold,
+p-value and both decisions. --plot draws ROC and precision-recall curves per solver: the
+calibrated rule over alpha (a sweep of the p-value threshold) and the count rule over K.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_io  # noqa: E402
+
+TOOL = "decisions"
+
+
+def scores(decisions):
+    """(tp, fp, tn, fn, precision, recall, f1) of a list of (expected, accepted) pairs."""
+    tp = sum(e and a for e, a in decisions)
+    fp = sum((not e) and a for e, a in decisions)
+    tn = sum((not e) and (not a) for e, a in decisions)
+    fn = sum(e and (not a) for e, a in decisions)
+    precision = tp / (tp + fp) if tp + fp else None
+    recall = tp / (tp + fn) if tp + fn else None
+    f1 = 2 * tp / (2 * tp + fp + fn) if tp + fp + fn else None
+    return tp, fp, tn, fn, precision, recall, f1
+
+
+def median(values):
+    v = sorted(x for x in values if x is not None)
+    if not v:
+        return None
+    m = len(v) // 2
+    return v[m] if len(v) % 2 else 0.5 * (v[m - 1] + v[m])
+
+
+def load_rows(paths):
+    rows, errors, alphas = [], 0, set()
+    for path in paths:
+        doc = report_io.load_report(TOOL, path)
+        alphas.add(doc.get("parameters", {}).get("alpha"))
+        for r in doc["results"]:
+            if "solver" not in r or r.get("expected") not in ("positive", "negative"):
+                continue
+            if r["status"] == "error":
+                errors += 1
+                continue
+            r["_name"] = os.path.basename(r["dataset"].rstrip("/")) if r["dataset"] else "?"
+            rows.append(r)
+    return rows, errors, alphas
+
+
+def count_threshold(row, count):
+    return count if count else (10 if row["dim"] == 2 else 5)
+
+
+def main():
+    p = report_io.parser(TOOL, __doc__)
+    p.add_argument("--count", type=int, default=0, help="K of the count rule (0: 5 in 3D, 10 in 2D)")
+    p.add_argument("--rows", action="store_true", help="one line per dump and solver")
+    p.add_argument("--plot", metavar="PNG", help="ROC and precision-recall curves")
+    args = p.parse_args()
+    rows, errors, alphas = load_rows(args.reports)
+    if not rows:
+        report_io.fail(TOOL, "no rows with an expected decision in the reports")
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
+    if args.rows:
+        print("| dump | expected | solver | inliers | null mean | threshold | p | pvalue | count |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for r in rows:
+            count_ok = r["inliers"] >= count_threshold(r, args.count)
+            p_text = report_io.fmt(r.get("p_value"), ".2g")
+            print(f"| {r['_name']} | {r['expected']} | {r['solver']} | {r['inliers']} | "
+                  f"{report_io.fmt(r.get('null_mean'), '.1f')} | "
+                  f"{report_io.fmt(r.get('null_threshold'), 'd')} | {p_text} | "
+                  f"{'accept' if r['accepted'] else 'reject'} | "
+                  f"{'accept' if count_ok else 'reject'} |")
+        print()
+    alpha_text = ", ".join(str(a) for a in sorted(a for a in alphas if a is not None)) or "?"
+    print(f"| solver | rule | TP | FP | TN | FN | precision | recall | F1 | median solve ms | "
+          f"median calibration ms | calibration / solve |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for s in solvers:
+        mine = [r for r in rows if r["solver"] == s]
+        solve = median(r["time_ms"] for r in mine)
+        cal = median(r.get("calibration_ms") for r in mine)
+        pv = [r for r in mine if r.get("accept_rule") == "pvalue"]
+        rules = []
+        if pv:
+            rules.append((f"p < {alpha_text}", [(r["expected"] == "positive", r["accepted"]) for r in pv]))
+        rules.append((f"count >= {args.count or '5/10'}",
+                      [(r["expected"] == "positive", r["inliers"] >= count_threshold(r, args.count))
+                       for r in mine]))
+        for name, decided in rules:
+            tp, fp, tn, fn, prec, rec, f1 = scores(decided)
+            ratio = cal / solve if (cal is not None and solve) and name.startswith("p") else None
+            print(f"| {s} | {name} | {tp} | {fp} | {tn} | {fn} | {report_io.fmt(prec, '.3f')} | "
+                  f"{report_io.fmt(rec, '.3f')} | {report_io.fmt(f1, '.3f')} | "
+                  f"{report_io.fmt(solve, '.1f')} | "
+                  f"{report_io.fmt(cal if name.startswith('p') else None, '.1f')} | "
+                  f"{report_io.fmt(ratio, '.1f')} |")
+    if errors:
+        print(f"\n{errors} error rows left out")
+    if args.plot:
+        plot(rows, solvers, args.plot)
+
+
+def curve(rows, accept):
+    """(fpr, tpr, precision, recall) of one decision function."""
+    decided = [(r["expected"] == "positive", accept(r)) for r in rows]
+    tp, fp, tn, fn, prec, rec, _ = scores(decided)
+    fpr = fp / (fp + tn) if fp + tn else float("nan")
+    tpr = tp / (tp + fn) if tp + fn else float("nan")
+    return fpr, tpr, (prec if prec is not None else 1.0), (rec if rec is not None else float("nan"))
+
+
+def plot(rows, solvers, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (roc, pr) = plt.subplots(1, 2, figsize=(11, 4.5))
+    alphas = [10.0 ** e for e in range(-16, 0)]
+    for k, s in enumerate(solvers):
+        mine = [r for r in rows if r["solver"] == s]
+        colour = f"C{k}"
+        counts = sorted(set(r["inliers"] for r in mine) | {0})
+        cnt = [curve(mine, lambda r, c=c: r["inliers"] >= c) for c in counts]
+        roc.plot([c[0] for c in cnt], [c[1] for c in cnt], "--", color=colour, label=f"{s}: count K")
+        pr.plot([c[3] for c in cnt], [c[2] for c in cnt], "--", color=colour, label=f"{s}: count K")
+        pv = [r for r in mine if r.get("p_value") is not None]
+        if pv:
+            cal = [curve(pv, lambda r, a=a: r["p_value"] < a and r["inliers"] >= 3) for a in alphas]
+            roc.plot([c[0] for c in cal], [c[1] for c in cal], "o-", color=colour, ms=3,
+                     label=f"{s}: p < alpha")
+            pr.plot([c[3] for c in cal], [c[2] for c in cal], "o-", color=colour, ms=3,
+                    label=f"{s}: p < alpha")
+    roc.set_xlabel("false accept rate (negatives accepted)")
+    roc.set_ylabel("true accept rate (positives accepted)")
+    roc.set_title("ROC of the accept decision")
+    pr.set_xlabel("recall")
+    pr.set_ylabel("precision")
+    pr.set_title("precision-recall of the accept decision")
+    for ax in (roc, pr):
+        ax.grid(alpha=0.3)
+        ax.set_xlim(-0.02, 1.02)
+        ax.set_ylim(-0.02, 1.02)
+    pr.legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    tmp = path + ".tmp.png"
+    fig.savefig(tmp, dpi=110)
+    os.replace(tmp, path)
+    print(f"\nplot: {path}")
+
+
+if __name__ == "__main__":
+    main()

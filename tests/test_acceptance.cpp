@@ -1,0 +1,316 @@
+// The calibrated accept rule (issue #13): the permutation null, the Gumbel tail, its calibration
+// on synthetic negatives, its power on planted motions, the count rule left as it was, and the
+// decision scores of a report.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+
+#include "acceptance/calibration.hpp"
+#include "core/errors.hpp"
+#include "core/random.hpp"
+#include "datasets/dump_format.hpp"
+#include "generators/synthetic.hpp"
+#include "harness/builtin.hpp"
+#include "harness/harness.hpp"
+#include "reports/report.hpp"
+#include "solvers/registry.hpp"
+
+namespace verifybench {
+namespace {
+
+class Registered : public ::testing::Environment {
+ public:
+  void SetUp() override { register_builtin_solvers(); }
+};
+const auto* const kRegistered = ::testing::AddGlobalTestEnvironment(new Registered);
+
+template <int Dim>
+LabeledSet<Dim> draw(int n, double ratio, std::uint64_t seed, bool negative = false,
+                     const std::string& kind = "uniform") {
+  SyntheticParams sp;
+  sp.n = n;
+  sp.outlier_ratio = ratio;
+  sp.seed = seed;
+  sp.kind = kind;
+  sp.negative = negative;
+  return make_synthetic<Dim>(sp);
+}
+
+/// Upper 99.9% point of Binomial(n, p): the count of p-values below p that a calibrated test
+/// exceeds with probability under 0.001 (exact tail sum).
+int binomial_upper(int n, double p) {
+  double tail = 0.0;
+  for (int k = n; k >= 0; --k) {
+    const double log_pmf = std::lgamma(n + 1.0) - std::lgamma(k + 1.0) - std::lgamma(n - k + 1.0) +
+                           k * std::log(p) + (n - k) * std::log1p(-p);
+    tail += std::exp(log_pmf);
+    if (tail > 0.001) return k;
+  }
+  return 0;
+}
+
+TEST(Permutation, KeepsEveryTargetAndWhichCorrespondencesShareOne) {
+  // A k-NN-like set: 40 sources with 3 targets each, targets drawn from 60 points, so targets
+  // repeat across sources.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-10, 10);
+  Eigen::Matrix3Xd pool(3, 60);
+  for (int j = 0; j < 60; ++j) pool.col(j) = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  Correspondences<3> c;
+  c.source.resize(3, 120);
+  c.target.resize(3, 120);
+  std::uniform_int_distribution<int> pick(0, 59);
+  for (int i = 0; i < 120; ++i) {
+    c.source.col(i) = Eigen::Vector3d(i / 3, 0, 0);
+    c.target.col(i) = pool.col(pick(rng));
+  }
+  const Correspondences<3> p = permute_targets(c, 42);
+  EXPECT_EQ(p.source, c.source);
+  auto sorted_columns = [](const Eigen::Matrix3Xd& m) {
+    std::vector<std::array<double, 3>> v;
+    for (int i = 0; i < m.cols(); ++i) v.push_back({m(0, i), m(1, i), m(2, i)});
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  // The distinct targets are the same points (each mapped to one other), and i, j share a target
+  // after exactly when they did before.
+  std::vector<std::array<double, 3>> before = sorted_columns(c.target), after = sorted_columns(p.target);
+  before.erase(std::unique(before.begin(), before.end()), before.end());
+  after.erase(std::unique(after.begin(), after.end()), after.end());
+  EXPECT_EQ(before, after);
+  int moved = 0;
+  for (int i = 0; i < 120; ++i) {
+    moved += p.target.col(i) != c.target.col(i);
+    for (int j = 0; j < 120; ++j) {
+      ASSERT_EQ(c.target.col(i) == c.target.col(j), p.target.col(i) == p.target.col(j)) << i << " " << j;
+    }
+  }
+  EXPECT_GT(moved, 100);  // a permutation of ~55 groups leaves few in place
+  EXPECT_EQ(permute_targets(c, 42).target, p.target);  // seeded
+  EXPECT_NE(permute_targets(c, 43).target, p.target);
+}
+
+TEST(NullModel, FittedTailFollowsAKnownGumbelLaw) {
+  // Scores rounded from Gumbel(mu = 20, beta = 2): the fit's P(X >= s) must follow the true
+  // P(G >= s - 1/2) = 1 - exp(-exp(-(s - 1/2 - mu) / beta)) (the rounding's continuity
+  // correction), in the tail where the permutation floor no longer applies: never below it (the
+  // rounding's variance, 1/12, only widens the fit) and within a factor 2 above.
+  std::mt19937_64 rng(5);
+  std::extreme_value_distribution<double> gumbel(20.0, 2.0);
+  std::vector<int> scores;
+  for (int k = 0; k < 20000; ++k) scores.push_back(static_cast<int>(std::lround(gumbel(rng))));
+  const NullFit f = fit_null(scores);
+  for (int s : {28, 32, 36, 40}) {
+    const double truth = -std::expm1(-std::exp(-(s - 0.5 - 20.0) / 2.0));
+    EXPECT_GE(f.p_value(s), truth) << "score " << s;
+    EXPECT_LE(f.p_value(s), 2.0 * truth) << "score " << s;
+  }
+  for (double alpha : {1e-2, 1e-3, 1e-6}) {
+    const int t = f.threshold(alpha);
+    EXPECT_LT(f.p_value(t), alpha);
+    EXPECT_GE(f.p_value(t - 1), alpha);
+  }
+}
+
+TEST(NullModel, NeverBelowThePermutationFloorAndRejectsBadInput) {
+  const NullFit f = fit_null({7, 7, 8, 7, 9, 7, 7, 8, 7, 7});
+  // 9 reached once in 10 draws: p >= (1 + 1) / 11 however thin the fitted tail.
+  EXPECT_GE(f.p_value(9), 2.0 / 11.0);
+  EXPECT_DOUBLE_EQ(f.p_value(0), 1.0);
+  for (int s = 1; s < 40; ++s) EXPECT_LE(f.p_value(s), f.p_value(s - 1));
+  EXPECT_LE(f.p_value(30), 1e-12);
+  EXPECT_GE(cautious_fit(f.scores).p_value(12), f.p_value(12));
+  EXPECT_THROW(fit_null({3}), std::invalid_argument);
+  EXPECT_THROW(fit_null({3, -1}), std::invalid_argument);
+}
+
+TEST(Calibration, EarlyStopsGiveTheDecisionOfAllDraws) {
+  // Oracle: the K null solves made by hand from the documented seeds, fitted on all K.
+  const auto solver = SolverRegistry::create("clique");
+  SolverParams params;
+  params.eps = 0.3;
+  params.accept.null_draws = 12;
+  int early = 0, accepted = 0;
+  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
+    const double ratio = seed % 2 ? 0.97 : 0.985;
+    const LabeledSet<3> set = draw<3>(300, ratio, seed, seed % 4 == 0);
+    params.seed = derive_seed(seed, {9});
+    const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
+    const Calibration c = calibrate(*solver, set.corr, params, observed);
+    std::vector<int> all;
+    for (int k = 0; k < params.accept.null_draws; ++k) {
+      const std::uint64_t s = derive_seed(params.seed, {kNullStream, std::uint64_t(k)});
+      SolverParams p = params;
+      p.accept.rule = AcceptParams::Rule::count;
+      p.seed = derive_seed(s, {1});
+      all.push_back(static_cast<int>(solver->solve(permute_targets(set.corr, s), p).inliers.size()));
+    }
+    const NullFit full = fit_null(all);
+    EXPECT_EQ(c.p_value < params.accept.alpha, full.p_value(observed) < params.accept.alpha)
+        << "seed " << seed << " observed " << observed;
+    EXPECT_TRUE(std::equal(c.null.scores.begin(), c.null.scores.end(), all.begin()));
+    early += c.null.draws < params.accept.null_draws;
+    accepted += c.p_value < params.accept.alpha;
+  }
+  EXPECT_GE(early, 6);  // many pairs are decided before the last draw
+  EXPECT_GT(accepted, 0);
+  EXPECT_LT(accepted, 16);
+}
+
+template <int Dim>
+void expect_calibrated_on_negatives(const std::string& solver_name, double eps) {
+  // Synthetic negatives of the uniform kind are exchangeable with their permutations, so the
+  // count of p-values under a level must stay within the binomial 99.9% bound of that level.
+  const auto solver = SolverRegistry::create(solver_name);
+  SolverParams params;
+  params.eps = eps;
+  params.inlier_threshold = eps;
+  params.ransac.iterations = 300;
+  constexpr int kSets = 400;
+  std::map<double, int> below{{0.01, 0}, {0.05, 0}};
+  for (int t = 0; t < kSets; ++t) {
+    const LabeledSet<Dim> set = draw<Dim>(300, 0.5, derive_seed(77, {std::uint64_t(t)}), true);
+    params.seed = derive_seed(78, {std::uint64_t(t)});
+    const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
+    const Calibration c = calibrate(*solver, set.corr, params, observed);
+    for (auto& [level, count] : below) count += c.p_value < level;
+  }
+  for (const auto& [level, count] : below) {
+    EXPECT_LE(count, binomial_upper(kSets, level))
+        << solver_name << " " << Dim << "D: " << count << " of " << kSets << " negatives have p < "
+        << level;
+  }
+}
+
+TEST(Calibration, PValuesOfNegativesAreNotBelowUniform) {
+  expect_calibrated_on_negatives<2>("clique", 0.5);
+  expect_calibrated_on_negatives<3>("clique", 0.5);
+  expect_calibrated_on_negatives<3>("ransac", 0.3);
+}
+
+TEST(Calibration, PlantedMotionIsDetectedAtTheStatedPower) {
+  // Stated in README: 9 inliers among 300 correspondences (97% outliers) accepted at alpha = 0.001
+  // in at least 95% of sets; the negative twins rejected.
+  const auto solver = SolverRegistry::create("clique");
+  const SuccessCriteria criteria;
+  for (int dim : {2, 3}) {
+    int accepted = 0, false_accepts = 0;
+    constexpr int kSets = 60;
+    for (int t = 0; t < kSets; ++t) {
+      SolverParams params;
+      params.seed = derive_seed(5, {std::uint64_t(t)});
+      const std::uint64_t seed = derive_seed(6, {std::uint64_t(dim), std::uint64_t(t)});
+      TrialRecord pos, neg;
+      if (dim == 2) {
+        pos = evaluate(*solver, "clique", draw<2>(300, 0.97, seed), params, criteria);
+        neg = evaluate(*solver, "clique", draw<2>(300, 0.97, seed, true), params, criteria);
+      } else {
+        pos = evaluate(*solver, "clique", draw<3>(300, 0.97, seed), params, criteria);
+        neg = evaluate(*solver, "clique", draw<3>(300, 0.97, seed, true), params, criteria);
+      }
+      ASSERT_EQ(pos.true_inliers, 9);
+      accepted += pos.accepted;
+      false_accepts += neg.accepted;
+      EXPECT_EQ(pos.accept_rule, "pvalue");
+      EXPECT_EQ(std::string(decision_of(pos)), pos.accepted ? "TP" : "FN");
+    }
+    EXPECT_GE(accepted, 57) << dim << "D";
+    EXPECT_LE(false_accepts, 1) << dim << "D";
+  }
+}
+
+TEST(Calibration, CountRuleIsThePapersRule) {
+  // Under --accept count a row is accepted exactly when inliers >= min_inliers, and no null is run.
+  const SuccessCriteria criteria;
+  for (const std::string name : {"clique", "ransac", "jcbb"}) {
+    const auto solver = SolverRegistry::create(name);
+    for (int k : {0, 8, 40}) {
+      SolverParams params;
+      params.accept.rule = AcceptParams::Rule::count;
+      params.min_inliers = k;
+      for (double ratio : {0.5, 0.9, 0.97, 1.0}) {
+        const TrialRecord r =
+            evaluate(*solver, name, draw<3>(300, ratio, 11), params, criteria);
+        ASSERT_NE(r.status, "error") << r.message;
+        EXPECT_EQ(r.accepted, r.inliers >= (k > 0 ? k : 5)) << name << " k=" << k;
+        EXPECT_EQ(r.status, r.accepted ? "ok" : "rejected");
+        EXPECT_TRUE(std::isnan(r.p_value));
+        EXPECT_EQ(r.null_draws, 0);
+        EXPECT_EQ(r.accept_rule, "count");
+      }
+    }
+  }
+}
+
+TEST(Calibration, ReportScoresDecisionsAgainstHandCounts) {
+  std::vector<TrialRecord> rows;
+  // (solver, expected, accepted, status): a: 3 TP, 1 FN, 2 FP, 4 TN; b: 1 TP, 1 TN, an error, an
+  // unknown.
+  auto add = [&](const std::string& s, std::optional<bool> expected, bool accepted,
+                 const std::string& status = "ok") {
+    TrialRecord r;
+    r.solver = s;
+    r.expected_positive = expected;
+    r.accepted = accepted;
+    r.status = status;
+    rows.push_back(r);
+  };
+  for (int i = 0; i < 3; ++i) add("a", true, true);
+  add("a", true, false);
+  for (int i = 0; i < 2; ++i) add("a", false, true);
+  for (int i = 0; i < 4; ++i) add("a", false, false);
+  add("b", true, true);
+  add("b", false, false);
+  add("b", false, true, "error");
+  add("b", std::nullopt, true);
+  const auto d = decisions(rows);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0]["solver"], "a");
+  EXPECT_EQ(d[0]["tp"], 3);
+  EXPECT_EQ(d[0]["fn"], 1);
+  EXPECT_EQ(d[0]["fp"], 2);
+  EXPECT_EQ(d[0]["tn"], 4);
+  EXPECT_DOUBLE_EQ(d[0]["precision"].get<double>(), 3.0 / 5.0);
+  EXPECT_DOUBLE_EQ(d[0]["recall"].get<double>(), 3.0 / 4.0);
+  EXPECT_DOUBLE_EQ(d[0]["f1"].get<double>(), 6.0 / 9.0);
+  EXPECT_DOUBLE_EQ(d[0]["false_accept_rate"].get<double>(), 2.0 / 6.0);
+  EXPECT_EQ(d[1]["tp"], 1);
+  EXPECT_EQ(d[1]["tn"], 1);
+  EXPECT_EQ(d[1]["fp"], 0);
+}
+
+TEST(Calibration, SyntheticNegativesAndManifestsSayWhatToExpect) {
+  const LabeledSet<3> neg = draw<3>(100, 0.2, 4, true);
+  EXPECT_EQ(neg.truth.positive, false);
+  EXPECT_FALSE(neg.truth.T_target_source);
+  EXPECT_EQ(std::count(neg.truth.labels.begin(), neg.truth.labels.end(), 1), 0);
+  EXPECT_EQ(draw<3>(100, 0.2, 4).truth.positive, true);
+
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("vb_manifest_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  {
+    std::ofstream m(dir / "MANIFEST.tsv");
+    m << "name\tn\texpected\nloop\t10\tpositive\nfar\t10\tnegative\nodd\t10\tmaybe\n";
+  }
+  EXPECT_EQ(manifest_expected((dir / "loop").string()), true);
+  EXPECT_EQ(manifest_expected((dir / "far/").string()), false);
+  EXPECT_EQ(manifest_expected((dir / "other").string()), std::nullopt);
+  try {
+    manifest_expected((dir / "odd").string());
+    ADD_FAILURE() << "an expected value 'maybe' was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("MANIFEST.tsv"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("maybe"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("4"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace verifybench
