@@ -83,6 +83,16 @@ SuccessCriteria criteria(const Options& o) {
   return c;
 }
 
+std::string report_path(const Options& o) {
+  const std::string out = o.required("out");
+  try {
+    check_report_path(out);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--out: ") + e.what());
+  }
+  return out;
+}
+
 std::vector<std::string> solver_names(const Options& o) {
   const auto names = o.list("solvers");
   SolverRegistry::check(names);

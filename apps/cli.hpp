@@ -21,6 +21,8 @@ SolverParams solver_params(const Options& o);
 SuccessCriteria criteria(const Options& o);
 /// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
 std::vector<std::string> solver_names(const Options& o);
+/// --out, checked before any work (check_report_path): a UsageError when it could not be written.
+std::string report_path(const Options& o);
 /// The parameters block of a report: common fields, every family field, the success criteria.
 nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c);
 /// --prior-rot-deg / --prior-trans, and their values: both > 0 or both 0; radians and metres.

@@ -36,7 +36,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   params.seed = o.seed("seed");
   const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30))
                                 << 20;
-  const std::string out = o.required("out");
+  const std::string out = cli::report_path(o);
 
   std::vector<CliqueRecord> rows;
   Progress progress("dimacs", static_cast<long long>(o.positional().size() * names.size()),

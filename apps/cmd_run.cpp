@@ -29,7 +29,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const SolverParams params = cli::solver_params(o);
   const SuccessCriteria crit = cli::criteria(o);
   const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
-  const std::string out = o.required("out");
+  const std::string out = cli::report_path(o);
   const auto [prior_rot, prior_trans] = cli::prior_sigmas(o);
   const std::string expected_text = o.text("expected");
   if (expected_text != "auto" && expected_text != "positive" && expected_text != "negative") {

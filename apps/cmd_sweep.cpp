@@ -82,7 +82,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.params = cli::solver_params(o);
   c.seed = c.params.seed;
   c.criteria = cli::criteria(o);
-  const std::string out = o.required("out");
+  const std::string out = cli::report_path(o);
 
   nlohmann::json parameters = cli::params_json(c.params, c.criteria);
   parameters["sweep"] = {{"generator", c.shape.kind},

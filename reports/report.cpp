@@ -1,5 +1,6 @@
 #include "reports/report.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -325,24 +326,67 @@ json make_report(const json& context, const json& parameters,
           {"aggregates", std::move(aggregates)}};
 }
 
-void write_json_atomic(const std::string& path, const json& doc) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    if (!out) {
-      throw std::runtime_error("cannot write report " + path + ": " + std::strerror(errno));
+void check_report_path(const std::string& path) {
+  if (path.empty()) throw std::runtime_error("cannot write report: the path is empty");
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    const char* what = S_ISLNK(st.st_mode)    ? "a symbolic link"
+                       : S_ISDIR(st.st_mode)  ? "a directory"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO"
+                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                       : S_ISREG(st.st_mode)  ? nullptr
+                                              : "not a regular file";
+    if (what) {
+      throw std::runtime_error("cannot write report " + path + ": it is " + what +
+                               "; reports only replace regular files");
     }
-    out << doc.dump(2) << '\n';
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw std::runtime_error("cannot write report " + path + ": write failed");
-    }
+  } else if (errno != ENOENT) {
+    throw std::runtime_error("cannot write report " + path + ": " + std::strerror(errno));
   }
+  const std::string dir = [&] {
+    const auto slash = path.find_last_of('/');
+    return slash == std::string::npos ? std::string(".") : path.substr(0, slash + 1);
+  }();
+  if (::access(dir.c_str(), W_OK | X_OK) != 0) {
+    throw std::runtime_error("cannot write report " + path + ": folder " + dir + ": " +
+                             std::strerror(errno));
+  }
+}
+
+void write_json_atomic(const std::string& path, const json& doc) {
+  check_report_path(path);
+  // A fresh, exclusively created temporary beside the target (mkstemp: O_CREAT | O_EXCL, so a link
+  // planted at a guessable name is never followed), written, flushed to disk, then renamed.
+  std::string tmp = path + ".tmp.XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) {
+    throw std::runtime_error("cannot write report " + path + ": " + std::strerror(errno));
+  }
+  const std::string text = doc.dump(2) + "\n";
+  auto fail = [&](const std::string& why) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write report " + path + ": " + why);
+  };
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t k = ::write(fd, text.data() + done, text.size() - done);
+    if (k < 0) {
+      if (errno == EINTR) continue;
+      fail(std::strerror(errno));
+    }
+    done += static_cast<std::size_t>(k);
+  }
+  if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) fail(std::strerror(errno));
+  if (::close(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    ::unlink(tmp.c_str());
+    throw std::runtime_error("cannot write report " + path + ": " + why);
+  }
+  check_report_path(path);  // the target may have been swapped while we wrote
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
+    ::unlink(tmp.c_str());
     throw std::runtime_error("cannot write report " + path + ": " + why);
   }
 }

@@ -40,8 +40,14 @@ nlohmann::json to_json(const CliqueRecord& row);
 nlohmann::json make_report(const nlohmann::json& context, const nlohmann::json& parameters,
                            const std::vector<CliqueRecord>& rows);
 
-/// Writes to PATH.tmp.PID beside the target, then renames, so a reader never sees half a report.
-/// Throws std::runtime_error naming the path on failure and leaves no temporary file behind.
+/// Throws std::runtime_error naming the path when a report could not be written there: the path
+/// exists and is not a regular file (a symlink, FIFO, device, directory or socket is never
+/// replaced), or its folder is missing or not writable. Commands call it before doing the work.
+void check_report_path(const std::string& path);
+
+/// Writes to an exclusively created PATH.tmp.XXXXXX beside the target (mkstemp), fsyncs it and
+/// renames it over PATH, so a reader never sees half a report. check_report_path() first. Throws
+/// std::runtime_error naming the path on failure and leaves no temporary file behind.
 void write_json_atomic(const std::string& path, const nlohmann::json& doc);
 
 }  // namespace verifybench

@@ -232,9 +232,15 @@ TEST(Cli, GraphBeyondTheMemoryCapIsAnErrorNotACrash) {
 TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
   const CliRun r =
       run("sweep --n 20 --outliers 0.5 --trials 1 --quiet --out /nonexistent/dir/r.json");
-  EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.output.find("cannot write report /nonexistent/dir/r.json"), std::string::npos)
+  EXPECT_EQ(r.code, 2);  // found before the work, not after it
+  EXPECT_NE(r.output.find("--out: cannot write report /nonexistent/dir/r.json"), std::string::npos)
       << r.output;
+  EXPECT_EQ(r.output.find("sweep"), std::string::npos) << "no progress before the refusal: " << r.output;
+  for (const std::string cmd : {"sweep --n 20 --trials 1 --quiet", "dimacs x.clq --quiet"}) {
+    const CliRun d = run(cmd + " --out /dev/null");
+    EXPECT_EQ(d.code, 2) << cmd << "\n" << d.output;
+    EXPECT_NE(d.output.find("it is a device"), std::string::npos) << d.output;
+  }
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 // The JSON report: schema fields, aggregates computed by hand, atomic writes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -118,6 +120,49 @@ TEST(Report, WritesAtomicallyAndParsesBack) {
   entries = 0;
   for (const auto& e : fs::directory_iterator(dir)) entries += e.is_regular_file();
   EXPECT_EQ(entries, 1);
+  fs::remove_all(dir);
+}
+
+TEST(Report, NeverReplacesLinksFifosOrDevicesAndNeverFollowsAPlantedTemporary) {
+  const fs::path dir = fs::temp_directory_path() / ("vb_report_paths_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const json doc = make_report(make_context({"x"}, 1), json::object(), {row("clique", 0.5, 1, true)});
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  // A symlink as the target: refused; the file it points to keeps its bytes, the link stays.
+  { std::ofstream(dir / "victim") << "precious"; }
+  fs::create_symlink(dir / "victim", dir / "link.json");
+  EXPECT_THROW(write_json_atomic((dir / "link.json").string(), doc), std::runtime_error);
+  EXPECT_EQ(slurp(dir / "victim"), "precious");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
+  // A FIFO: refused at once (never opened, so nothing blocks), still a FIFO afterwards.
+  ASSERT_EQ(::mkfifo((dir / "fifo.json").c_str(), 0600), 0);
+  try {
+    write_json_atomic((dir / "fifo.json").string(), doc);
+    ADD_FAILURE() << "a FIFO was replaced";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a FIFO"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_fifo(dir / "fifo.json"));
+  // A character device (/dev/null exists on every Linux): refused, still a device.
+  EXPECT_THROW(write_json_atomic("/dev/null", doc), std::runtime_error);
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  // Links planted at the old predictable temporary names are not followed.
+  for (int pid : {::getpid(), ::getpid() + 1}) {
+    fs::create_symlink(dir / "victim", dir / ("r.json.tmp." + std::to_string(pid)));
+  }
+  write_json_atomic((dir / "r.json").string(), doc);
+  EXPECT_EQ(slurp(dir / "victim"), "precious");
+  std::ifstream in(dir / "r.json");
+  EXPECT_EQ(json::parse(in), doc);
+  // A regular file is replaced; no temporary is left (only victim, r.json, the links, the FIFO).
+  write_json_atomic((dir / "r.json").string(), doc);
+  int regular = 0;
+  for (const auto& e : fs::directory_iterator(dir)) regular += fs::is_regular_file(fs::symlink_status(e));
+  EXPECT_EQ(regular, 2);
   fs::remove_all(dir);
 }
 
