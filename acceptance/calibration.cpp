@@ -88,12 +88,10 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
 }
 
 template <int Dim>
-void decide_calibrated(Result<Dim>& result, const Calibration& calibration,
-                       const SolverParams& params) {
+void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
+                       const Calibration& calibration, const SolverParams& params) {
   if (params.accept.rule != AcceptParams::Rule::pvalue || result.status == Status::error) return;
-  const int minimal = Dim == 2 ? 2 : 3;  // points that fix a rigid motion
-  result.accepted = calibration.p_value < params.accept.alpha &&
-                    static_cast<int>(result.inliers.size()) >= minimal;
+  result.accepted = calibration.p_value < params.accept.alpha && pins_motion(corr, result.inliers);
   if (result.status != Status::time_limit) {
     result.status = result.accepted ? Status::ok : Status::rejected;
   }
@@ -103,7 +101,8 @@ void decide_calibrated(Result<Dim>& result, const Calibration& calibration,
   template Correspondences<D> permute_targets<D>(const Correspondences<D>&, std::uint64_t); \
   template Calibration calibrate<D>(const Solver&, const Correspondences<D>&,               \
                                     const SolverParams&, int);                              \
-  template void decide_calibrated<D>(Result<D>&, const Calibration&, const SolverParams&);
+  template void decide_calibrated<D>(Result<D>&, const Correspondences<D>&, const Calibration&, \
+                                     const SolverParams&);
 VB_INSTANTIATE(2)
 VB_INSTANTIATE(3)
 #undef VB_INSTANTIATE

@@ -38,11 +38,11 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                       const SolverParams& params, int observed);
 
 /// Applies the rule to a finished solve: under `count` leaves the solver's decision; under
-/// `pvalue` accepts when p < alpha and the inliers can fix a motion (2 in 2D, 3 in 3D), and sets
+/// `pvalue` accepts when p < alpha and the inliers pin down a motion (pins_motion), and sets
 /// status ok / rejected to match (time_limit and error stay).
 template <int Dim>
-void decide_calibrated(Result<Dim>& result, const Calibration& calibration,
-                       const SolverParams& params);
+void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
+                       const Calibration& calibration, const SolverParams& params);
 
 /// Draws before an early accept.
 inline constexpr int kMinDrawsToAccept = 5;

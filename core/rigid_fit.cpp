@@ -1,5 +1,7 @@
 #include "core/rigid_fit.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <numeric>
 #include <stdexcept>
 
@@ -55,6 +57,36 @@ template std::optional<Rigid<2>> fit_rigid<2>(const Correspondences<2>&, const s
                                               const std::vector<double>&);
 template std::optional<Rigid<3>> fit_rigid<3>(const Correspondences<3>&, const std::vector<int>&,
                                               const std::vector<double>&);
+namespace {
+
+template <int Dim>
+bool side_spans(const typename Correspondences<Dim>::Points& pts, const std::vector<int>& selected) {
+  Eigen::Matrix<double, Dim, 1> mean = Eigen::Matrix<double, Dim, 1>::Zero();
+  for (int i : selected) mean += pts.col(i);
+  mean /= static_cast<double>(selected.size());
+  Eigen::Matrix<double, Dim, Dim> cov = Eigen::Matrix<double, Dim, Dim>::Zero();
+  for (int i : selected) {
+    const Eigen::Matrix<double, Dim, 1> d = pts.col(i) - mean;
+    cov += d * d.transpose();
+  }
+  cov /= static_cast<double>(selected.size());
+  const auto ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, Dim, Dim>>(
+                      cov, Eigen::EigenvaluesOnly).eigenvalues();  // ascending
+  const double largest = ev(Dim - 1);
+  if (!(largest > 1e-24 * (1.0 + mean.squaredNorm()))) return false;  // all coincident
+  return Dim == 2 || ev(Dim - 2) > 1e-10 * largest;                   // 3D: not collinear
+}
+
+}  // namespace
+
+template <int Dim>
+bool pins_motion(const Correspondences<Dim>& corr, const std::vector<int>& selected) {
+  if (static_cast<int>(selected.size()) < (Dim == 2 ? 2 : 3)) return false;
+  return side_spans<Dim>(corr.source, selected) && side_spans<Dim>(corr.target, selected);
+}
+
+template bool pins_motion<2>(const Correspondences<2>&, const std::vector<int>&);
+template bool pins_motion<3>(const Correspondences<3>&, const std::vector<int>&);
 template std::optional<Rigid<2>> fit_rigid<2>(const Correspondences<2>&);
 template std::optional<Rigid<3>> fit_rigid<3>(const Correspondences<3>&);
 

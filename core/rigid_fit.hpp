@@ -116,4 +116,11 @@ std::optional<Rigid<Dim>> fit_rigid_minimal(const Eigen::Matrix<double, Dim, Dim
 template <int Dim>
 std::optional<Rigid<Dim>> fit_rigid(const Correspondences<Dim>& corr);
 
+/// Whether the selected correspondences pin down one rigid motion: at least 2 (2D) / 3 (3D) of
+/// them, and on each side points that are not all coincident (2D) or not all collinear (3D: the
+/// second largest eigenvalue of their covariance above 1e-10 of the largest). A selection that does
+/// not is never accepted (solver.hpp decide()).
+template <int Dim>
+bool pins_motion(const Correspondences<Dim>& corr, const std::vector<int>& selected);
+
 }  // namespace verifybench

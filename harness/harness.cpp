@@ -25,7 +25,7 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
     try {
       const Calibration c =
           calibrate(solver, set.corr, params, static_cast<int>(result.inliers.size()));
-      decide_calibrated(result, c, params);
+      decide_calibrated(result, set.corr, c, params);
       r.p_value = c.p_value;
       r.null_threshold = c.threshold;
       r.null_mean = c.null.mean;

@@ -35,7 +35,7 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
     if (auto T = fit_rigid(corr, result.inliers)) result.T_target_source = *T;
     result.times.fit_ms = fit_clock.ms();
 
-    decide(result, params, !clique.stopped);
+    decide(result, corr, params, !clique.stopped);
     return result;
   }
 

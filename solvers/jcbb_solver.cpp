@@ -265,7 +265,7 @@ class JcbbSolver : public SolverBase<JcbbSolver> {
     std::sort(result.inliers.begin(), result.inliers.end());
     if (auto T = fit_rigid(corr, result.inliers)) result.T_target_source = *T;
     result.times.fit_ms = fit_clock.ms();
-    decide(result, params, !search.stopped);
+    decide(result, corr, params, !search.stopped);
     return result;
   }
 };

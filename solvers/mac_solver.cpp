@@ -72,7 +72,7 @@ class MacSolver : public SolverBase<MacSolver> {
     StopWatch fit_clock;
     if (best_count > 0) take_consensus_with_refit(corr, best_T, params.inlier_threshold, result);
     result.times.fit_ms = fit_clock.ms();
-    decide(result, params, complete);
+    decide(result, corr, params, complete);
     return result;
   }
 };

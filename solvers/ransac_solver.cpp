@@ -174,7 +174,7 @@ class Engine {
       take_consensus_with_refit(corr_, best_T_, params_.inlier_threshold, result);
     }
     result.times.fit_ms = fit_clock.ms();
-    decide(result, params_, finished);
+    decide(result, corr_, params_, finished);
     return result;
   }
 

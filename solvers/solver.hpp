@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/correspondences.hpp"
+#include "core/rigid_fit.hpp"
 #include "solvers/params.hpp"
 
 namespace verifybench {
@@ -81,10 +82,14 @@ class SolverBase : public Solver {
   }
 };
 
-/// Sets accepted and status from the inlier count and whether the search finished.
+/// Sets accepted and status from the inlier count and whether the search finished. A selection
+/// that does not pin down a motion (collinear or coincident points: pins_motion) is never
+/// accepted, whatever its count.
 template <int Dim>
-void decide(Result<Dim>& result, const SolverParams& params, bool finished) {
-  result.accepted = static_cast<int>(result.inliers.size()) >= params.accept_threshold(Dim);
+void decide(Result<Dim>& result, const Correspondences<Dim>& corr, const SolverParams& params,
+            bool finished) {
+  result.accepted = static_cast<int>(result.inliers.size()) >= params.accept_threshold(Dim) &&
+                    pins_motion(corr, result.inliers);
   result.status = !finished ? Status::time_limit : result.accepted ? Status::ok : Status::rejected;
 }
 

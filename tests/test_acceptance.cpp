@@ -247,6 +247,35 @@ TEST(Calibration, CountRuleIsThePapersRule) {
   }
 }
 
+TEST(Calibration, DegenerateSetsAreNeverAccepted) {
+  // 20 collinear correspondences (a motion along the line leaves the rotation about it free) and
+  // 200 identical rows: every solver, under either rule, rejects them, whatever its count.
+  Correspondences<3> line, same;
+  line.source.resize(3, 20);
+  for (int i = 0; i < 20; ++i) line.source.col(i) = Eigen::Vector3d(i, 0.5 * i, 2.0);
+  line.target = line.source;
+  line.target.row(0).array() += 1.0;
+  same.source = Eigen::Matrix3Xd::Constant(3, 200, 1.5);
+  same.target = Eigen::Matrix3Xd::Constant(3, 200, -2.0);
+  const SuccessCriteria criteria;
+  for (const std::string name : {"clique", "ransac", "lo-ransac", "mac", "jcbb"}) {
+    const auto solver = SolverRegistry::create(name);
+    for (auto rule : {AcceptParams::Rule::count, AcceptParams::Rule::pvalue}) {
+      SolverParams params;
+      params.accept.rule = rule;
+      params.accept.null_draws = 5;
+      for (const auto* c : {&line, &same}) {
+        LabeledSet<3> set;
+        set.corr = *c;
+        const TrialRecord r = evaluate(*solver, name, set, params, criteria);
+        EXPECT_FALSE(r.accepted) << name << " " << to_string(rule) << " n=" << r.n
+                                 << " inliers=" << r.inliers << " " << r.message;
+        EXPECT_NE(r.status, "ok") << name;
+      }
+    }
+  }
+}
+
 TEST(Calibration, ReportScoresDecisionsAgainstHandCounts) {
   std::vector<TrialRecord> rows;
   // (solver, expected, accepted, status): a: 3 TP, 1 FN, 2 FP, 4 TN; b: 1 TP, 1 TN, an error, an

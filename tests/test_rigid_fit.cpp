@@ -143,6 +143,38 @@ TEST(RigidFit3D, CollinearOrTooFewPointsAreRefused) {
   EXPECT_FALSE(fit_rigid(c, std::vector<int>{}).has_value());
 }
 
+TEST(PinsMotion, CollinearOrCoincidentSelectionsDoNotPinAMotion) {
+  std::mt19937_64 rng(4);
+  const Rigid<3> T = test::random_rigid<3>(rng);
+  Eigen::Matrix3Xd line(3, 20), plane(3, 20), same(3, 20), bent(3, 6);
+  for (int i = 0; i < 20; ++i) {
+    line.col(i) = Eigen::Vector3d(1.0 + i, 2.0 + 2.0 * i, -i);
+    plane.col(i) = Eigen::Vector3d(i % 5, i / 5, 0.0);  // a planar grid pins a 3D motion
+    same.col(i) = Eigen::Vector3d(3, 4, 5);
+  }
+  for (int i = 0; i < 6; ++i) bent.col(i) = Eigen::Vector3d(i, 2.0 * i, -1.0 * i);
+  bent(2, 3) += 1e-3;  // 1 mm off the line: fit_rigid still determines the motion
+  std::vector<int> all(20);
+  std::iota(all.begin(), all.end(), 0);
+  EXPECT_FALSE(pins_motion(apply<3>(T, line, 0.0, rng), all));
+  EXPECT_TRUE(pins_motion(apply<3>(T, plane, 0.0, rng), all));
+  EXPECT_FALSE(pins_motion(apply<3>(T, same, 0.0, rng), all));
+  EXPECT_TRUE(pins_motion(apply<3>(T, bent, 0.0, rng), {0, 1, 2, 3, 4, 5}));
+  EXPECT_FALSE(pins_motion(apply<3>(T, plane, 0.0, rng), {0, 1}));  // too few
+  // Sources spread but every target the same point: no motion maps them there.
+  Correspondences<3> collapsed = apply<3>(T, plane, 0.0, rng);
+  collapsed.target.colwise() = Eigen::Vector3d(1, 1, 1);
+  EXPECT_FALSE(pins_motion(collapsed, all));
+  // 2D: collinear points fix a planar motion, coincident ones do not.
+  const Rigid<2> T2 = test::random_rigid<2>(rng);
+  Eigen::Matrix2Xd line2(2, 10), same2(2, 10);
+  for (int i = 0; i < 10; ++i) line2.col(i) = Eigen::Vector2d(i, 2.0 * i), same2.col(i) = Eigen::Vector2d(7, 7);
+  std::vector<int> ten(10);
+  std::iota(ten.begin(), ten.end(), 0);
+  EXPECT_TRUE(pins_motion(apply<2>(T2, line2, 0.0, rng), ten));
+  EXPECT_FALSE(pins_motion(apply<2>(T2, same2, 0.0, rng), ten));
+}
+
 TEST(RigidFit, WeightsSelectTheWeightedSubset) {
   std::mt19937_64 rng(13);
   const Rigid<3> T = test::random_rigid<3>(rng);

@@ -55,7 +55,7 @@ void take_library_answer(const Eigen::Matrix4d& M, const Correspondences<Dim>& c
   }
   result.T_target_source = *T;
   result.inliers = consensus_set(corr, *T, params.inlier_threshold);
-  decide(result, params, true);
+  decide(result, corr, params, true);
 }
 
 /// Runs `library()` (the library's 4x4 answer) in a forked child killed at --time-limit, so that a
