@@ -139,8 +139,9 @@ Dump read_set(const fs::path& dir, const json& meta) {
       s.truth.labels.push_back(l == "1");
     }
   }
+  if (pts.empty()) fail(file, "no correspondences (empty set)");  // as the text reader says
   if (meta.contains("count") && meta["count"].is_number_integer() &&
-      meta["count"].get<std::size_t>() != pts.size()) {
+      meta["count"].get<long long>() != static_cast<long long>(pts.size())) {
     fail(file, std::to_string(pts.size()) +
                    " correspondences but dump.json says count = " + meta["count"].dump());
   }
@@ -217,10 +218,25 @@ Dump read_dump(const std::string& dir) {
     d.set = read_text_dump(dir);  // the plain-text layout (corr.txt, label.txt, GTmat.txt)
     return d;
   }
+  // dump.json holds metadata only (the points are in matches.tsv): bounded in size and nesting, so
+  // that a hostile file cannot exhaust memory or the stack (copying JSON recurses).
+  std::error_code size_error;
+  const auto bytes = fs::file_size(meta_file, size_error);
+  if (size_error) fail(meta_file, "cannot read: " + size_error.message());
+  if (bytes > kMaxDumpJsonBytes) {
+    fail(meta_file, "is " + std::to_string(bytes) + " bytes; dump.json holds metadata only (at most " +
+                        std::to_string(kMaxDumpJsonBytes) + ")");
+  }
   json meta;
   try {
     std::ifstream in(meta_file);
-    meta = json::parse(in);
+    meta = json::parse(in, [](int depth, json::parse_event_t, json&) {
+      if (depth > kMaxDumpJsonDepth) {
+        throw std::length_error("nesting deeper than " + std::to_string(kMaxDumpJsonDepth) +
+                                " levels");
+      }
+      return true;
+    });
   } catch (const std::exception& e) {
     fail(meta_file, std::string("not valid JSON: ") + e.what());
   }
@@ -228,15 +244,19 @@ Dump read_dump(const std::string& dir) {
     fail(meta_file, "field format is not \"verifybench-dump\"");
   }
   if (!meta.contains("version") || !meta["version"].is_number_integer() ||
-      meta["version"].get<int>() != kDumpFormatVersion) {
+      meta["version"].get<long long>() != kDumpFormatVersion) {
     fail(meta_file,
          "field version = " + (meta.contains("version") ? meta["version"].dump() : "missing") +
              "; this build reads version " + std::to_string(kDumpFormatVersion));
   }
-  const int dim =
-      meta.contains("dim") && meta["dim"].is_number_integer() ? meta["dim"].get<int>() : 0;
-  if (dim == 2) return read_set<2>(root, meta);
-  if (dim == 3) return read_set<3>(root, meta);
+  const long long dim =
+      meta.contains("dim") && meta["dim"].is_number_integer() ? meta["dim"].get<long long>() : 0;
+  try {
+    if (dim == 2) return read_set<2>(root, meta);
+    if (dim == 3) return read_set<3>(root, meta);
+  } catch (const json::exception& e) {  // a field of the wrong JSON type
+    fail(meta_file, std::string("a field has the wrong type: ") + e.what());
+  }
   fail(meta_file, "field dim = " + (meta.contains("dim") ? meta["dim"].dump() : "missing") +
                       "; expected 2 or 3");
 }

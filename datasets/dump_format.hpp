@@ -10,6 +10,7 @@
 //                    label_threshold).
 // From Python: json.load(open("DIR/dump.json")); numpy.loadtxt("DIR/matches.tsv").
 #include <nlohmann/json.hpp>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,9 @@ struct Dump {
 };
 
 constexpr int kDumpFormatVersion = 1;
+/// dump.json limits: metadata only, so small and shallow (a larger or deeper one is refused).
+constexpr std::uintmax_t kMaxDumpJsonBytes = std::uintmax_t{16} << 20;
+constexpr int kMaxDumpJsonDepth = 64;
 
 /// Writes DIR atomically: into a sibling temporary folder, renamed to DIR at the end. Refuses an
 /// existing DIR (nothing is overwritten). Throws InputError (bad set) or std::runtime_error (I/O).

@@ -190,6 +190,54 @@ TEST(DumpFormat, RoundTripsEveryField) {
   expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 2,
                    "columns": ["xs", "ys", "zs", "xt", "yt", "zt"]})",
                "columns do not match dim 2");
+  // 64-bit values are not truncated to 32 bits (4294967297 is not version 1 or dim 3 ...).
+  expect_error(R"({"format": "verifybench-dump", "version": 4294967297, "dim": 3})",
+               "version = 4294967297");
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 4294967299})",
+               "dim = 4294967299");
+  // ... a field of the wrong JSON type is an input error naming the file, not a library message ...
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 3, "columns": "xs"})",
+               "dump.json");
+  // ... and deep nesting or a huge metadata file is refused before it is copied.
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 3, "provenance": )" +
+                   std::string(100000, '[') + std::string(100000, ']') + "}",
+               "nesting deeper than 64");
+  expect_error(R"({"format": "verifybench-dump", "version": 1, "dim": 3, "pad": ")" +
+                   std::string(17u << 20, 'x') + "\"}",
+               "metadata only");
+  fs::remove_all(dir);
+}
+
+TEST(DumpFormat, AnEmptyDumpIsRefusedAsTheTextReaderRefusesOne) {
+  LabeledSet<3> s;
+  s.corr.source = Eigen::Matrix3Xd::Random(3, 2);
+  s.corr.target = s.corr.source;
+  Dump d;
+  d.set = s;
+  const fs::path dir = fs::temp_directory_path() / "vb_dump_empty";
+  fs::remove_all(dir);
+  write_dump(dir.string(), d);
+  {
+    std::ifstream in(dir / "matches.tsv");
+    std::string header;
+    std::getline(in, header);
+    in.close();
+    std::ofstream(dir / "matches.tsv") << header << "\n";  // keep only the header
+  }
+  nlohmann::json meta;
+  {
+    std::ifstream in(dir / "dump.json");
+    meta = nlohmann::json::parse(in);
+  }
+  meta["count"] = 0;
+  std::ofstream(dir / "dump.json") << meta.dump();
+  try {
+    read_dump(dir.string());
+    ADD_FAILURE() << "an empty dump was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no correspondences"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("matches.tsv"), std::string::npos) << e.what();
+  }
   fs::remove_all(dir);
 }
 
