@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "frontend/cloud_header.hpp"
 #include "core/transform.hpp"
 
 namespace verifybench {
@@ -47,6 +48,11 @@ Cloud read_kitti_bin(const std::string& path) {
 
 Cloud read_with_pcl(const std::string& path, const std::string& ext) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  if (ext == ".pcd") {
+    check_pcd_header(path);
+  } else {
+    check_ply_header(path);
+  }
   pcl::PointCloud<pcl::PointXYZ> pc;
   const int rc = ext == ".pcd" ? pcl::io::loadPCDFile(path, pc) : pcl::io::loadPLYFile(path, pc);
   if (rc < 0) fail(path, "PCL's " + ext.substr(1) + " reader could not parse it");

@@ -390,7 +390,59 @@ TEST(CloudIo, MalformedAndEmptyCloudsAreNamedErrors) {
   }
   expect_error(dir / "nan.bin", "point 1 is not finite");
   std::ofstream(dir / "bad.ply") << "this is not a ply file\n";
-  expect_error(dir / "bad.ply", "could not parse");
+  expect_error(dir / "bad.ply", "not a PLY header");
+  // The files that crashed, hung or over-allocated inside PCL's readers (issue #15), refused by our
+  // own header check first.
+  std::ofstream(dir / "zero.pcd").flush();
+  expect_error(dir / "zero.pcd", "empty file");
+  std::ofstream(dir / "one.pcd") << "#";
+  expect_error(dir / "one.pcd", "not a PCD header");
+  std::ofstream(dir / "hello.pcd") << "hello";
+  expect_error(dir / "hello.pcd", "not a PCD header");
+  const std::string pcd_head =
+      "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1000000000\n"
+      "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1000000000\nDATA binary\n";
+  std::ofstream(dir / "huge.pcd") << pcd_head << "0123456789AB";
+  expect_error(dir / "huge.pcd", "promises 1000000000 points");
+  std::ofstream(dir / "noz.pcd")
+      << "VERSION .7\nFIELDS x y\nSIZE 4 4\nTYPE F F\nCOUNT 1 1\nWIDTH 1\nHEIGHT 1\n"
+         "POINTS 1\nDATA ascii\n1 2\n";
+  expect_error(dir / "noz.pcd", "no 'z'");
+  std::ofstream(dir / "negative.ply")
+      << "ply\nformat binary_little_endian 1.0\nelement vertex -42\nproperty float x\n"
+         "property float y\nproperty float z\nend_header\n";
+  expect_error(dir / "negative.ply", "count = '-42'");
+  std::ofstream(dir / "faces.ply")
+      << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  expect_error(dir / "faces.ply", "element face");
+  std::ofstream(dir / "noxyz.ply")
+      << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float a\nproperty float b\n"
+         "end_header\n1 2\n3 4\n";
+  expect_error(dir / "noxyz.ply", "lacks x, y or z");
+  std::ofstream(dir / "huge.ply")
+      << "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
+         "property float y\nproperty float z\nend_header\n0123";
+  expect_error(dir / "huge.ply", "promises 1000000000 vertices");
+  // Well-formed files still read, with the points they hold (the oracle: what was written).
+  std::ofstream(dir / "ok.pcd")
+      << "# a comment\nVERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+         "WIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6\n";
+  const Cloud pcd = read_cloud((dir / "ok.pcd").string());
+  ASSERT_EQ(pcd.size(), 2u);
+  EXPECT_EQ(pcd[1], Eigen::Vector3f(4, 5, 6));
+  {
+    std::ofstream out(dir / "ok.ply", std::ios::binary);
+    out << "ply\nformat binary_little_endian 1.0\ncomment test\nelement vertex 2\n"
+           "property float x\nproperty float y\nproperty float z\nproperty float intensity\n"
+           "end_header\n";
+    const float v[8] = {1, 2, 3, 9, -4, 5.5f, 6, 9};
+    out.write(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  const Cloud ply = read_cloud((dir / "ok.ply").string());
+  ASSERT_EQ(ply.size(), 2u);
+  EXPECT_EQ(ply[1], Eigen::Vector3f(-4, 5.5f, 6));
   std::ofstream(dir / "cloud.xyz") << "1 2 3\n";
   expect_error(dir / "cloud.xyz", "unknown point cloud extension");
   expect_error(dir / "missing.pcd", "no such file");
