@@ -16,6 +16,15 @@ BevImage make_bev(const Cloud& cloud, const BevParams& params) {
         << " are invalid; expected cell > 0, range > cell, min_fraction in [0, 1]";
     throw std::invalid_argument(msg.str());
   }
+  // The image side, checked as a double before any conversion (a huge range / cell overflowed int):
+  // at most kMaxBevSide cells a side (16384^2 counts = 1 GiB of ints).
+  const double side = std::ceil(2.0 * params.range / params.cell);
+  if (!(side <= kMaxBevSide)) {
+    std::ostringstream msg;
+    msg << "bev: range = " << params.range << " / cell = " << params.cell << " gives an image of "
+        << side << " cells a side; at most " << kMaxBevSide;
+    throw std::invalid_argument(msg.str());
+  }
   BevImage img;
   img.cell = params.cell;
   img.origin = -params.range;

@@ -9,6 +9,9 @@
 
 namespace verifybench {
 
+/// The largest bird's-eye-view image side make_bev() builds, in cells.
+inline constexpr int kMaxBevSide = 16384;
+
 struct BevParams {
   double cell = 0.5;           ///< metres per pixel, > 0
   double min_fraction = 0.05;  ///< cells below this fraction of the maximum count are dropped

@@ -286,6 +286,8 @@ void SyntheticParams::validate() const {
           "a finite value > 0");
   require(grid_spacing > 0.0 && (kind != "repetitive" || grid_spacing <= extent), "grid_spacing",
           grid_spacing, "a value in (0, extent]");
+  require(kind != "repetitive" || extent / grid_spacing <= 1e6, "grid_spacing", grid_spacing,
+          "at least extent / 1e6 (at most a million pillars)");
   require(overlap > 0.0 && overlap <= 1.0, "overlap", overlap, "a value in (0, 1]");
   require(tail_dof > 0.0 && std::isfinite(tail_dof), "tail_dof", tail_dof, "a finite value > 0");
   require(anisotropy >= 1.0 && std::isfinite(anisotropy), "anisotropy", anisotropy,

@@ -134,6 +134,9 @@ TEST(Bev, CountsAndScalesADrawnPointSet) {
   EXPECT_EQ(total, 51);  // the point outside is not counted
   EXPECT_TRUE(img.metric(100.5, 100.5).isApprox(Eigen::Vector2d(0.25, 0.25)));
   EXPECT_THROW(make_bev(cloud, BevParams{0.0, 0.05, 50}), std::invalid_argument);
+  // Extreme range / cell: refused before any conversion to int or allocation.
+  EXPECT_THROW(make_bev(cloud, BevParams{1e-9, 0.05, 1e9}), std::invalid_argument);
+  EXPECT_THROW(make_bev(cloud, BevParams{0.001, 0.05, 1e4}), std::invalid_argument);  // 2e7 a side
 }
 
 /// A street: ground, building blocks with windows (ISS corners), poles, sampled every 0.1 m.

@@ -188,6 +188,13 @@ TEST(Generators, BevOrbIsTwoDimensionalAndOnTheCellGrid) {
     }
   }
   EXPECT_THROW(make_synthetic<3>(p), std::invalid_argument);
+  {  // a million-fold extent / grid_spacing would overflow the pillar count
+    SyntheticParams r;
+    r.kind = "repetitive";
+    r.extent = 1e12;
+    r.grid_spacing = 1e-3;
+    EXPECT_THROW(make_synthetic<3>(r), std::invalid_argument);
+  }
 }
 
 TEST(Generators, UnknownKindsAndBadShapesAreNamed) {
