@@ -1,5 +1,11 @@
 #include "graph/compatibility_graph.hpp"
 
+#include "core/timer.hpp"
+
+#include <optional>
+
+#include <atomic>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -92,13 +98,21 @@ struct FloatColumns {
 /// Fills the upper triangle (bits j > i of row i) for rows first, first + step, ...
 template <int Dim>
 void fill_upper_rows(BitGraph& g, const Correspondences<Dim>& corr, const FloatColumns<Dim>& fc,
-                     double eps, int first, int step) {
+                     double eps, int first, int step,
+                     const std::optional<SteadyClock::time_point>& deadline,
+                     std::atomic<bool>& stop) {
   const int n = g.size();
   std::vector<std::uint8_t> flags(static_cast<std::size_t>(n) + 64, 0);
   const float* cols[2 * Dim];
   for (int k = 0; k < 2 * Dim; ++k) cols[k] = fc.cols[static_cast<std::size_t>(k)].data();
   const float eps_f = static_cast<float>(eps);
-  for (int i = first; i < n; i += step) {
+  for (int i = first, done = 0; i < n; i += step, ++done) {
+    if (deadline && done % 32 == 0) {
+      if (stop.load(std::memory_order_relaxed) || SteadyClock::now() > *deadline) {
+        stop.store(true, std::memory_order_relaxed);
+        return;
+      }
+    }
     // Start at the word holding bit i + 1; bits <= i of that word are cleared below.
     const int w0 = (i + 1) / BitGraph::kWordBits;
     const int j0 = w0 * BitGraph::kWordBits;
@@ -172,15 +186,23 @@ BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const Graph
         << " MiB of adjacency rows, over the cap of " << params.max_bytes / (1 << 20) << " MiB";
     throw std::length_error(msg.str());
   }
+  std::optional<SteadyClock::time_point> deadline;
+  if (params.time_limit_s > 0.0) deadline = deadline_after(params.time_limit_s);
   BitGraph g(static_cast<int>(n));
   const FloatColumns<Dim> fc(corr, params.eps);
   const int threads =
       std::max(1, std::min(resolve_threads(params.threads), static_cast<int>(n / 256) + 1));
   // Rows interleaved across workers: each writes only its own rows, so the graph is the same for
   // any thread count.
+  std::atomic<bool> stop{false};
   WorkerPool workers(threads);
-  workers.parallel_for(threads,
-                       [&](int t) { fill_upper_rows<Dim>(g, corr, fc, params.eps, t, threads); });
+  workers.parallel_for(threads, [&](int t) {
+    fill_upper_rows<Dim>(g, corr, fc, params.eps, t, threads, deadline, stop);
+  });
+  if (stop.load()) {
+    throw GraphTimeLimit("the time limit passed while building the correspondence graph (" +
+                         std::to_string(n) + " vertices)");
+  }
   mirror(g);
   return g;
 }

@@ -3,6 +3,7 @@
 //   | ||m_i - m_j|| - ||q_i - q_j|| | < eps                                   (paper, Eq. 1)
 // i.e. the pair keeps its length under the motion, as any two inliers of one rigid motion do.
 #include <cstddef>
+#include <stdexcept>
 
 #include "core/correspondences.hpp"
 #include "graph/bitgraph.hpp"
@@ -13,10 +14,18 @@ struct GraphParams {
   double eps = 0.1;                              ///< pair length tolerance [m], > 0
   std::size_t max_bytes = std::size_t{4} << 30;  ///< refuse graphs whose rows exceed this
   int threads = 1;  ///< worker threads (0 = all cores); same graph for any count
+  double time_limit_s = 0.0;  ///< > 0: give up past this many seconds (GraphTimeLimit)
 };
 
-/// Throws std::invalid_argument for eps <= 0 and std::length_error (with the sizes) when the
-/// adjacency rows would exceed params.max_bytes.
+/// Thrown when GraphParams::time_limit_s passed before the graph was complete.
+class GraphTimeLimit : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws std::invalid_argument for eps <= 0, std::length_error (with the sizes) when the
+/// adjacency rows would exceed params.max_bytes, GraphTimeLimit when the time limit passed (the
+/// clock is read every 32 rows).
 template <int Dim>
 BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const GraphParams& params);
 

@@ -18,7 +18,9 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
-    const BitGraph graph = build_graph_stage(corr, params, result);
+    const auto built = build_graph_stage(corr, params, result);
+    if (!built) return result;
+    const BitGraph& graph = *built;
 
     StopWatch search_clock;
     CliqueSearchParams search;

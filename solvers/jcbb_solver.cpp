@@ -35,6 +35,7 @@
 #include "core/rigid_fit.hpp"
 #include "core/timer.hpp"
 #include "graph/compatibility_graph.hpp"
+#include "solvers/detail/graph_stage.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
@@ -248,14 +249,14 @@ class JcbbSolver : public SolverBase<JcbbSolver> {
     Result<Dim> result;
     const double sigma = params.jcbb_point_sigma();
     const double pair_eps = 2.0 * sigma * std::sqrt(chi2_quantile(params.jcbb.confidence, 1));
-    StopWatch graph_clock;
-    const BitGraph graph = build_compatibility_graph(
-        corr, GraphParams{pair_eps, params.max_graph_bytes, params.threads});
-    result.times.graph_ms = graph_clock.ms();
-    result.counters.graph_edges = graph.edge_count();
+    const auto built = build_graph_stage(corr, params, result, pair_eps);
+    if (!built) return result;
+    const BitGraph& graph = *built;
+    SolverParams rest = params;  // the search gets what the graph left of the limit
+    rest.time_limit_s = std::max(1e-9, params.time_limit_s - result.times.graph_ms / 1000.0);
 
     StopWatch search_clock;
-    Search<Dim> search(corr, params, graph);
+    Search<Dim> search(corr, rest, graph);
     search.run(search.candidates());
     result.times.search_ms = search_clock.ms();
     result.counters.branch_nodes = search.nodes;

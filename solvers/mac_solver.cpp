@@ -22,7 +22,9 @@ class MacSolver : public SolverBase<MacSolver> {
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
-    const BitGraph g = build_graph_stage(corr, params, result);
+    const auto built = build_graph_stage(corr, params, result);
+    if (!built) return result;
+    const BitGraph& g = *built;
 
     StopWatch search_clock;
     const int n = g.size();

@@ -7,6 +7,7 @@
 #include "cliques/max_clique.hpp"
 #include "core/metrics.hpp"
 #include "generators/synthetic.hpp"
+#include "graph/compatibility_graph.hpp"
 #include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
 
@@ -180,6 +181,27 @@ TEST_F(Registered, CliqueTimeLimitGivesBestSoFar) {
   const auto r = SolverRegistry::create("clique")->solve(set.corr, sp);
   EXPECT_EQ(r.status, Status::time_limit);
   EXPECT_FALSE(r.inliers.empty());
+}
+
+TEST_F(Registered, GraphConstructionStopsAtTheTimeLimit) {
+  // n = 20,000 takes far longer than a microsecond to connect: every graph solver stops in the
+  // graph stage (no edges counted, nothing selected), with status time_limit, not error.
+  SyntheticParams p;
+  p.n = 20000;
+  const auto set = make_synthetic<3>(p);
+  SolverParams sp;
+  sp.time_limit_s = 1e-6;
+  for (const std::string name : {"clique", "mac", "jcbb"}) {
+    const auto r = SolverRegistry::create(name)->solve(set.corr, sp);
+    EXPECT_EQ(r.status, Status::time_limit) << name << ": " << r.message;
+    EXPECT_EQ(r.counters.graph_edges, 0) << name;
+    EXPECT_TRUE(r.inliers.empty()) << name;
+    EXPECT_FALSE(r.accepted) << name;
+    EXPECT_NE(r.message.find("building the correspondence graph"), std::string::npos) << r.message;
+  }
+  GraphParams gp;
+  gp.time_limit_s = 1e-6;
+  EXPECT_THROW(build_compatibility_graph(set.corr, gp), GraphTimeLimit);
 }
 
 }  // namespace
