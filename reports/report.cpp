@@ -355,6 +355,10 @@ void check_report_path(const std::string& path) {
 }
 
 void write_json_atomic(const std::string& path, const json& doc) {
+  write_text_atomic(path, doc.dump(2) + "\n");
+}
+
+void write_text_atomic(const std::string& path, const std::string& text) {
   check_report_path(path);
   // A fresh, exclusively created temporary beside the target (mkstemp: O_CREAT | O_EXCL, so a link
   // planted at a guessable name is never followed), written, flushed to disk, then renamed.
@@ -363,7 +367,6 @@ void write_json_atomic(const std::string& path, const json& doc) {
   if (fd < 0) {
     throw std::runtime_error("cannot write report " + path + ": " + std::strerror(errno));
   }
-  const std::string text = doc.dump(2) + "\n";
   auto fail = [&](const std::string& why) {
     ::close(fd);
     ::unlink(tmp.c_str());

@@ -49,5 +49,7 @@ void check_report_path(const std::string& path);
 /// renames it over PATH, so a reader never sees half a report. check_report_path() first. Throws
 /// std::runtime_error naming the path on failure and leaves no temporary file behind.
 void write_json_atomic(const std::string& path, const nlohmann::json& doc);
+/// The same for any text (markdown tables, TSV).
+void write_text_atomic(const std::string& path, const std::string& text);
 
 }  // namespace verifybench
