@@ -7,10 +7,10 @@
 
 namespace verifybench::cli {
 
-void add_solver_options(Options& o) {
+void add_solver_options(Options& o, const SolverOptionDefaults& d) {
   o.group("solvers")
       .add("solvers", "A,B", "clique,ransac", "solvers to run (see `verifybench list`)")
-      .add("eps", "M", "0.1", "pair length tolerance of the correspondence graph, Eq. (1) [m]")
+      .add("eps", "M", d.eps, "pair length tolerance of the correspondence graph, Eq. (1) [m]")
       .add("inlier-threshold", "M", "", "consensus residual threshold [m] (default: eps)")
       .add("accept", "RULE", "pvalue",
            "accept rule: pvalue (p < alpha against a permutation null of the pair) or count "
@@ -35,7 +35,7 @@ void add_solver_options(Options& o) {
       .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
       .add("success-trans", "M", "0.3", "success: translation error under this [m]")
       .add("seed", "S", "1", "seed of every random draw (recorded in the report)")
-      .add("out", "FILE.json", "", "report path (required; written atomically)")
+      .add("out", d.out_value, "", d.out_help)
       .add("quiet", "", "", "no progress lines");
 }
 

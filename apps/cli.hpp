@@ -16,7 +16,12 @@ namespace verifybench::cli {
 
 /// --solvers, the common solver options, every family's options (one help group each), success
 /// criteria, --seed, --out, --quiet.
-void add_solver_options(Options& o);
+struct SolverOptionDefaults {
+  std::string eps = "0.1";
+  std::string out_value = "FILE.json";
+  std::string out_help = "report path (required; written atomically)";
+};
+void add_solver_options(Options& o, const SolverOptionDefaults& defaults = {});
 SolverParams solver_params(const Options& o);
 SuccessCriteria criteria(const Options& o);
 /// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
@@ -57,6 +62,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
 int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_extract(const std::vector<std::string>& args);
+int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 }  // namespace verifybench
 
 namespace verifybench::cli {

@@ -25,6 +25,8 @@ const Command kCommands[] = {
     {"dimacs", "maximum clique algorithms on DIMACS graphs (FILE.clq ...)", vb::cmd_dimacs},
     {"extract", "a correspondence dump from two scans (ISS + B-SHOT, or BEV + ORB; HBST matching)",
      [](const auto& args, const auto&) { return vb::cmd_extract(args); }},
+    {"loop", "loop closure on a sequence: local maps, retrieval, solvers, P/R/F1, pose graph, APE",
+     vb::cmd_loop},
 };
 
 std::string usage() {

@@ -7,24 +7,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "test_util.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code;
-  std::string output;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(VERIFYBENCH_CLI) + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
-  const int status = pipe ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using verifybench::test::CliRun;
+CliRun run(const std::string& args) { return verifybench::test::run_cli(args); }
 
 void expect_usage_error(const std::string& args, const std::string& needle) {
   const CliRun r = run(args);

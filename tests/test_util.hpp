@@ -1,8 +1,12 @@
 #pragma once
-// Helpers shared by the tests: seeded random graphs and transforms, and a brute-force clique
-// oracle.
+// Helpers shared by the tests: seeded random graphs and transforms, a brute-force clique oracle,
+// planar poses, and a runner for the CLI.
+#include <sys/wait.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "core/correspondences.hpp"
@@ -69,6 +73,30 @@ Rigid<Dim> random_rigid(std::mt19937_64& rng, double max_translation = 5.0) {
   }
   for (int d = 0; d < Dim; ++d) T.translation()(d) = t(rng);
   return T;
+}
+
+/// A pose in the plane: yaw about z, position (x, y, 0).
+inline Rigid<3> planar_pose(double x, double y, double yaw) {
+  Rigid<3> T = Rigid<3>::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() << x, y, 0.0;
+  return T;
+}
+
+struct CliRun {
+  int code;
+  std::string output;  ///< stdout and stderr together
+};
+
+/// Runs the verifybench CLI of this build with `args` (a shell line).
+inline CliRun run_cli(const std::string& args) {
+  const std::string cmd = std::string(VERIFYBENCH_CLI) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) out += buf;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
 }  // namespace verifybench::test

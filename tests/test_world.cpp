@@ -12,18 +12,14 @@
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
 #include "generators/world.hpp"
+#include "test_util.hpp"
 
 namespace vb = verifybench;
 namespace fs = std::filesystem;
 
 namespace {
 
-vb::Rigid<3> pose(double x, double y, double yaw) {
-  vb::Rigid<3> T = vb::Rigid<3>::Identity();
-  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  T.translation() << x, y, 0.0;
-  return T;
-}
+vb::Rigid<3> pose(double x, double y, double yaw) { return vb::test::planar_pose(x, y, yaw); }
 
 std::vector<vb::Rigid<3>> straight(int n, double step) {
   std::vector<vb::Rigid<3>> path;

@@ -1,0 +1,210 @@
+#include "loop/loop_report.hpp"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "reports/report.hpp"
+
+namespace verifybench {
+namespace {
+
+using json = nlohmann::json;
+
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json ape_json(const ApeStats& a) {
+  return {{"rmse", a.rmse}, {"mean", a.mean}, {"median", a.median}, {"max", a.max},
+          {"poses", a.poses}};
+}
+
+json score_json(const ClosureScore& s) {
+  return {{"tp", s.tp},
+          {"fp", s.fp},
+          {"fn", s.fn},
+          {"precision", number(s.precision)},
+          {"recall", number(s.recall)},
+          {"f1", number(s.f1)}};
+}
+
+json matrix_json(const Rigid<3>& T) {
+  json rows = json::array();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 4; ++j) rows.push_back(T.matrix()(i, j));
+  }
+  return rows;
+}
+
+json positions(const std::vector<Rigid<3>>& poses) {
+  json out = json::array();
+  for (const auto& T : poses) {
+    const Eigen::Vector3d p = T.translation();
+    out.push_back({std::round(p.x() * 1000) / 1000, std::round(p.y() * 1000) / 1000,
+                   std::round(p.z() * 1000) / 1000});
+  }
+  return out;
+}
+
+std::string fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "-";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+void make_folder(const std::string& dir) {
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) == 0) {
+    if (!S_ISDIR(st.st_mode)) {
+      throw std::runtime_error("cannot write the loop report in " + dir +
+                               ": it exists and is not a folder");
+    }
+    return;
+  }
+  if (::mkdir(dir.c_str(), 0755) != 0) {
+    throw std::runtime_error("cannot create " + dir + ": " + std::strerror(errno));
+  }
+}
+
+}  // namespace
+
+json loop_report(const LoopConfig& config, const LoopRun& run, const json& context,
+                 const json& parameters) {
+  json maps = json::array();
+  for (const MapInfo& m : run.maps) {
+    maps.push_back({{"index", m.index},
+                    {"first_frame", m.first_frame + config.first_frame},
+                    {"last_frame", m.last_frame + config.first_frame},
+                    {"anchor_frame", m.anchor + config.first_frame},
+                    {"scans", m.scans},
+                    {"points", m.points},
+                    {"keypoints", m.keypoints},
+                    {"occupied_cells", m.occupied_cells},
+                    {"position_truth", {m.position_truth.x(), m.position_truth.y(),
+                                        m.position_truth.z()}}});
+  }
+  json truths = json::array();
+  for (const TrueClosure& t : run.true_closures) {
+    truths.push_back({{"query", t.query}, {"match", t.match}, {"overlap", t.overlap},
+                      {"distance_m", t.distance}});
+  }
+  json closures = json::array();
+  for (const ClosureRow& r : run.rows) {
+    json row = to_json(r.record);
+    row["query"] = r.query;
+    row["match"] = r.match;
+    row["votes"] = r.votes;
+    row["overlap"] = r.overlap;
+    row["true_closure"] = r.true_closure;
+    row["correct"] = r.correct;
+    row["closure_translation_error_m"] = r.translation_error;
+    row["closure_rotation_error_deg"] = r.rotation_error_deg;
+    row["T_match_query_estimate"] = matrix_json(r.T_estimate);
+    row["T_match_query_truth"] = matrix_json(r.T_truth);
+    closures.push_back(row);
+  }
+  json summary = json::array(), curves = json::object();
+  json trajectories = {{"truth", positions(run.truth)}, {"odometry", positions(run.odometry)}};
+  json frames = json::array();
+  for (int f : run.frames) frames.push_back(f + config.first_frame);
+  trajectories["frames"] = frames;
+  for (const SolverSummary& s : run.summary) {
+    json row = {{"solver", s.solver},
+                {"pipeline", config.extract.pipeline},
+                {"closures_accepted", s.accepted},
+                {"loop_edges", s.loop_edges},
+                {"inliers_mean", s.inliers_mean},
+                {"time_ms_mean", s.time_ms_mean},
+                {"calibration_ms_mean", s.calibration_ms_mean},
+                {"max_recall_full_precision", s.max_recall_full_precision},
+                {"ape_without_m", run.ape_without.rmse},
+                {"ape_with_m", s.ape_with.rmse},
+                {"ape_with_robust_m", s.ape_with_robust.rmse},
+                {"ape_without", ape_json(run.ape_without)},
+                {"ape_with", ape_json(s.ape_with)},
+                {"ape_with_robust", ape_json(s.ape_with_robust)}};
+    row.update(score_json(s.score));
+    summary.push_back(row);
+    json count = json::array(), alpha = json::array();
+    for (const CurvePoint& p : s.count_curve) {
+      json c = score_json(p.score);
+      c["min_inliers"] = static_cast<int>(p.threshold);
+      count.push_back(c);
+    }
+    for (const CurvePoint& p : s.alpha_curve) {
+      json c = score_json(p.score);
+      c["alpha"] = p.threshold;
+      alpha.push_back(c);
+    }
+    curves[s.solver] = {{"count", count}, {"alpha", alpha}};
+    trajectories[s.solver] = positions(s.poses_with);
+    trajectories[s.solver + "+robust"] = positions(s.poses_with_robust);
+  }
+  json candidates = json::array();
+  for (const Candidate& c : run.candidates) {
+    candidates.push_back({{"query", c.query}, {"match", c.match}, {"votes", c.votes}});
+  }
+  return {{"schema_version", kLoopReportSchemaVersion},
+          {"kind", "loop"},
+          {"context", context},
+          {"parameters", parameters},
+          {"seconds", run.seconds},
+          {"world", run.world},
+          {"maps", maps},
+          {"true_closures", truths},
+          {"candidates", candidates},
+          {"closures", closures},
+          {"summary", summary},
+          {"curves", curves},
+          {"trajectories", trajectories}};
+}
+
+std::string loop_markdown(const LoopConfig& config, const LoopRun& run) {
+  std::ostringstream md;
+  md << "# Loop closure: " << run.maps.size() << " local maps, " << run.true_closures.size()
+     << " true closures, " << run.candidates.size() << " candidates (pipeline "
+     << config.extract.pipeline << ", accept rule " << to_string(config.params.accept.rule)
+     << ")\n\n";
+  md << "Table I: loop-closure validation\n\n";
+  md << "| solver | accepted | TP | FP | FN | precision | recall | F1 | max recall @ P=1 | "
+        "inliers (mean) | time [ms] (mean) |\n";
+  md << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const SolverSummary& s : run.summary) {
+    md << "| " << s.solver << " | " << s.accepted << " | " << s.score.tp << " | " << s.score.fp
+       << " | " << s.score.fn << " | " << fixed(s.score.precision, 3) << " | "
+       << fixed(s.score.recall, 3) << " | " << fixed(s.score.f1, 3) << " | "
+       << fixed(s.max_recall_full_precision, 3) << " | " << fixed(s.inliers_mean, 1) << " | "
+       << fixed(s.time_ms_mean, 1) << " |\n";
+  }
+  md << "\nTable II: absolute trajectory error (APE rmse [m], SE(3)-aligned; " << run.truth.size()
+     << " scans)\n\n";
+  md << "| solver | without loops | with loops | with loops, robust (Cauchy) | loop edges |\n";
+  md << "|---|---|---|---|---|\n";
+  for (const SolverSummary& s : run.summary) {
+    md << "| " << s.solver << " | " << fixed(run.ape_without.rmse, 2) << " | "
+       << fixed(s.ape_with.rmse, 2) << " | " << fixed(s.ape_with_robust.rmse, 2) << " | "
+       << s.loop_edges << " |\n";
+  }
+  md << "\nWall time: " << fixed(run.seconds.count("total_s") ? run.seconds.at("total_s") : 0, 1)
+     << " s\n";
+  return md.str();
+}
+
+void check_loop_dir(const std::string& dir) {
+  make_folder(dir);
+  check_report_path(dir + "/loop.json");
+  check_report_path(dir + "/loop.md");
+}
+
+void write_loop_report(const std::string& dir, const json& report, const std::string& markdown) {
+  make_folder(dir);
+  write_json_atomic(dir + "/loop.json", report);
+  write_text_atomic(dir + "/loop.md", markdown);
+}
+
+}  // namespace verifybench

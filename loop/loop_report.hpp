@@ -1,0 +1,33 @@
+#pragma once
+// The report of a loop-closure run, in DIR:
+//   loop.json  { schema_version, context, parameters, seconds, world, maps, true_closures,
+//                closures: [one row per solver x candidate], summary: [one row per solver:
+//                solver, pipeline, closures_accepted, tp, fp, fn, precision, recall, f1,
+//                max_recall_full_precision, inliers_mean, time_ms_mean, calibration_ms_mean,
+//                ape_without_m, ape_with_m, ape_with_robust_m (rmse) and their full statistics],
+//                curves: {solver: {count: [...], alpha: [...]}},
+//                trajectories: {frames, truth, odometry, <solver>, <solver>+robust: [[x, y, z]...]} }
+//   loop.md    the summary in the layout of the paper's Tables I and II
+// Both written atomically (reports/report.hpp); reports/plot_loop.py draws the PNGs from loop.json.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "loop/sequence.hpp"
+
+namespace verifybench {
+
+inline constexpr int kLoopReportSchemaVersion = 1;
+
+nlohmann::json loop_report(const LoopConfig& config, const LoopRun& run,
+                           const nlohmann::json& context, const nlohmann::json& parameters);
+std::string loop_markdown(const LoopConfig& config, const LoopRun& run);
+
+/// Creates DIR when missing (a non-folder there is refused), writes loop.json and loop.md.
+/// Throws std::runtime_error naming the path.
+void write_loop_report(const std::string& dir, const nlohmann::json& report,
+                       const std::string& markdown);
+/// Checks before the work that DIR is (or can become) a writable folder whose loop.json and
+/// loop.md can be written; throws std::runtime_error naming the path.
+void check_loop_dir(const std::string& dir);
+
+}  // namespace verifybench

@@ -1,0 +1,141 @@
+#pragma once
+// Loop closure on a sequence, end to end (the paper's evaluation, issue #14):
+//   scans      simulated (a seeded street world along the true trajectory, ray-cast by an
+//              HDL-64-like LiDAR) or read from a KITTI layout (velodyne/NNNNNN.bin), one every
+//              scan_spacing metres of travel;
+//   odometry   the drift model of generators/odometry.hpp on the true trajectory;
+//   local maps every map_length metres of odometry travel (loop/local_maps.hpp);
+//   features   the 3d (ISS + B-SHOT) or 2d (BEV + ORB) front end on each map;
+//   retrieval  HBST votes over all older maps (loop/retrieval.hpp);
+//   verify     each solver of the registry on the correspondences of each candidate pair (every
+//              match within max_hamming bits, as an HBST query returns them), accepted by the
+//              solver's rule (count or calibrated p-value);
+//   truth      a pair is a true closure when its maps are at least min_map_gap apart, their true
+//              anchors within gt_max_distance, and their occupancies overlap by more than
+//              gt_overlap of the smaller; an accepted closure is correct when the pair is a true
+//              closure and the estimated relative pose is within pose_tolerance metres of the truth;
+//   back end   per solver, a pose graph of the maps (odometry edges + its accepted closures),
+//              with and without a robust loss; APE of every scan's pose with and without loops.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "datasets/trajectory.hpp"
+#include "frontend/extract.hpp"
+#include "generators/lidar.hpp"
+#include "generators/odometry.hpp"
+#include "generators/world.hpp"
+#include "loop/local_maps.hpp"
+#include "loop/pose_graph.hpp"
+#include "loop/retrieval.hpp"
+#include "loop/trajectory_metrics.hpp"
+#include "reports/record.hpp"
+#include "solvers/params.hpp"
+
+namespace verifybench {
+
+/// The front end's defaults for local maps: nearest matching within 50 bits, and a bird's-eye
+/// image of 80 m half side (ORB skips a 31-pixel border, 15.5 m at 0.5 m cells: a 100 m map seen
+/// from its middle needs more than one scan's 50 m).
+ExtractParams loop_extract_defaults();
+
+struct LoopConfig {
+  Trajectory truth;          ///< T_world_velodyne per frame, z up (the excerpt)
+  std::string sequence_dir;  ///< empty: simulate; else DIR/velodyne/NNNNNN.bin
+  int first_frame = 0;       ///< sequence index of truth[0] (file names)
+  WorldParams world;
+  LidarParams lidar;
+  DriftParams drift;
+  double scan_spacing = 2.0;  ///< [m] travel between the scans used
+  LocalMapParams maps;
+  RetrievalParams retrieval;
+  ExtractParams extract = loop_extract_defaults();  ///< front end and matcher (3d or 2d)
+  double gt_overlap = 0.5;        ///< occupancy overlap of a true closure (of the smaller map)
+  double gt_max_distance = 100.0; ///< [m] anchors of a true closure at most this far apart
+  double pose_tolerance = 6.0;    ///< [m] a correct closure's relative translation error
+  std::vector<std::string> solvers{"clique", "ransac"};
+  SolverParams params;
+  double loop_sigma_trans = 0.5;    ///< [m] loop edges in the pose graph
+  double loop_sigma_rot_deg = 2.0;  ///< [deg]
+  std::uint64_t seed = 1;
+  int threads = 1;  ///< maps built in parallel; results do not depend on it
+
+  /// Throws std::invalid_argument naming the field and value.
+  void validate() const;
+};
+
+struct MapInfo {
+  int index = 0, first_frame = 0, last_frame = 0, anchor = 0, scans = 0;
+  int points = 0, keypoints = 0, occupied_cells = 0;
+  Eigen::Vector3d position_truth = Eigen::Vector3d::Zero();
+};
+
+struct TrueClosure {
+  int query = 0, match = 0;
+  double overlap = 0, distance = 0;
+};
+
+/// One solver on one candidate pair.
+struct ClosureRow {
+  int query = 0, match = 0, votes = 0;
+  double overlap = 0;       ///< occupancy overlap of the pair
+  bool true_closure = false;
+  TrialRecord record;       ///< the harness's row: inliers, accepted, times, p-value, ...
+  Rigid<3> T_estimate = Rigid<3>::Identity();  ///< match <- query, lifted to SE(3) in 2D
+  Rigid<3> T_truth = Rigid<3>::Identity();
+  double translation_error = 0, rotation_error_deg = 0;
+  bool correct = false;  ///< true closure and translation_error < pose_tolerance
+};
+
+struct CurvePoint {
+  double threshold = 0;  ///< min inliers K, or alpha
+  ClosureScore score;
+};
+
+struct SolverSummary {
+  std::string solver;
+  ClosureScore score;
+  int accepted = 0;
+  double inliers_mean = 0, time_ms_mean = 0, calibration_ms_mean = 0;
+  std::vector<CurvePoint> count_curve;  ///< accept at inliers >= K, K = 1 .. max + 1
+  std::vector<CurvePoint> alpha_curve;  ///< accept at p < alpha (pvalue rule only)
+  /// Largest recall over the count curve at precision 1 (0 when no K reaches it).
+  double max_recall_full_precision = 0;
+  ApeStats ape_with, ape_with_robust;
+  std::vector<Rigid<3>> poses_with, poses_with_robust;  ///< every scan, optimised
+  int loop_edges = 0;
+};
+
+struct LoopRun {
+  std::vector<int> frames;  ///< the scans used (indices into config.truth)
+  std::vector<Rigid<3>> truth, odometry;  ///< at those frames
+  std::vector<MapInfo> maps;
+  std::vector<TrueClosure> true_closures;
+  std::vector<Candidate> candidates;
+  std::vector<ClosureRow> rows;
+  std::vector<SolverSummary> summary;
+  ApeStats ape_without;
+  std::map<std::string, double> seconds;  ///< per stage
+  std::map<std::string, int> world;       ///< the simulated world's counts
+};
+
+/// Progress of the run: stage name, done, total.
+using LoopProgress = std::function<void(const std::string& stage, long long done, long long total)>;
+
+/// The whole run. Throws std::invalid_argument (bad configuration), InputError (a scan file).
+LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress = {});
+
+/// Every closure row's ground truth on its own: true closures among all map pairs.
+std::vector<TrueClosure> true_closures(const std::vector<LocalMap>& maps, int min_map_gap,
+                                       double max_distance, double min_overlap);
+
+/// A planar motion as an SE(3) motion (rotation about z, translation in x-y).
+Rigid<3> lift_planar(const Rigid<2>& T);
+
+/// The scans used: the first frame, then each frame once the path from the last one used reaches
+/// `spacing`.
+std::vector<int> select_frames(const Trajectory& truth, double spacing);
+
+}  // namespace verifybench
