@@ -37,7 +37,11 @@ void add_loop_options(Options& o) {
       .add("lidar-dropout", "P", "0.05", "probability of a lost return")
       .add("world-building-density", "P", "0.2", "chance of a building in a block cell")
       .add("world-kerb-density", "P", "0.45", "chance of a pole, tree, car or clutter in a kerb cell");
-  o.group("odometry drift")
+  o.group("odometry")
+      .add("odometry", "drift|gicp", "drift",
+           "drift: the drift model below on the true poses; gicp: PCL GICP from scan to scan")
+      .add("gicp-voxel", "M", "1", "gicp: scans downsampled to this voxel")
+      .add("gicp-max-distance", "M", "1", "gicp: correspondence distance")
       .add("drift-trans", "F", "0.01", "translation sigma per metre of step")
       .add("drift-yaw-deg", "DEG", "0.05", "yaw random walk [deg / sqrt(m)]")
       .add("drift-tilt-deg", "DEG", "0.005", "roll and pitch random walk [deg / sqrt(m)]");
@@ -112,6 +116,12 @@ LoopConfig loop_config(const Options& o) {
   c.lidar.dropout = o.real("lidar-dropout", 0.0, 0.99);
   c.world.building_density = o.real("world-building-density", 0.0, 1.0);
   c.world.kerb_density = o.real("world-kerb-density", 0.0, 1.0);
+  c.odometry = o.text("odometry");
+  if (c.odometry != "drift" && c.odometry != "gicp") {
+    throw UsageError("--odometry: '" + c.odometry + "' is not drift or gicp");
+  }
+  c.gicp.voxel = o.real("gicp-voxel", 0.01, 100.0);
+  c.gicp.max_correspondence = o.real("gicp-max-distance", 0.01, 1000.0);
   c.drift.trans_rel = o.real("drift-trans", 0.0, 1.0);
   c.drift.yaw_deg = o.real("drift-yaw-deg", 0.0, 90.0);
   c.drift.tilt_deg = o.real("drift-tilt-deg", 0.0, 90.0);
@@ -166,6 +176,10 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"pose_tolerance_m", c.pose_tolerance},
                {"loop_sigma_trans_m", c.loop_sigma_trans},
                {"loop_sigma_rot_deg", c.loop_sigma_rot_deg},
+               {"odometry", c.odometry},
+               {"gicp", {{"voxel_m", c.gicp.voxel},
+                         {"max_correspondence_m", c.gicp.max_correspondence},
+                         {"max_iterations", c.gicp.max_iterations}}},
                {"drift", {{"trans_rel", c.drift.trans_rel},
                           {"yaw_deg_per_sqrt_m", c.drift.yaw_deg},
                           {"tilt_deg_per_sqrt_m", c.drift.tilt_deg}}},

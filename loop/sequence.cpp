@@ -44,6 +44,10 @@ void LoopConfig::validate() const {
                                 "' (loop closure retrieves by binary descriptors: 3d or 2d)");
   }
   if (solvers.empty()) throw std::invalid_argument("loop: no solver");
+  if (odometry != "drift" && odometry != "gicp") {
+    throw std::invalid_argument("loop: odometry '" + odometry + "' is not drift or gicp");
+  }
+  if (odometry == "gicp") gicp.validate();
   SolverRegistry::check(solvers);
   maps.validate();
   retrieval.validate();
@@ -136,12 +140,10 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
   StopWatch total_clock;
   LoopRun run;
   const Trajectory& truth = config.truth;
-  const Trajectory odometry_all =
-      drift_odometry(truth, config.drift, derive_seed(config.seed, {3}));
   run.frames = select_frames(truth, config.scan_spacing);
-  for (int f : run.frames) {
-    run.truth.push_back(truth[f]);
-    run.odometry.push_back(odometry_all[f]);
+  if (run.frames.size() < 3) {
+    throw std::invalid_argument("loop: " + std::to_string(run.frames.size()) +
+                                " scans at this spacing (at least 3)");
   }
 
   // Scans: simulated or read.
@@ -164,6 +166,27 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
     std::snprintf(name, sizeof name, "%06d.bin", config.first_frame + frame);
     return read_cloud(config.sequence_dir + "/velodyne/" + name);
   };
+
+  // Odometry: the drift model, or GICP from scan to scan (sequential: each step starts from the
+  // last). Only the frames used are filled in.
+  clock = StopWatch();
+  Trajectory odometry_all;
+  if (config.odometry == "gicp") {
+    odometry_all.assign(truth.size(), Rigid<3>::Identity());
+    const int n = static_cast<int>(run.frames.size());
+    long long steps = 0;
+    const auto poses = gicp_odometry([&](int k) { return scans(run.frames[k]); }, n,
+                                     truth[run.frames[0]], config.gicp,
+                                     [&] { report("odometry", ++steps, n - 1); });
+    for (int k = 0; k < n; ++k) odometry_all[run.frames[k]] = poses[k];
+  } else {
+    odometry_all = drift_odometry(truth, config.drift, derive_seed(config.seed, {3}));
+  }
+  for (int f : run.frames) {
+    run.truth.push_back(truth[f]);
+    run.odometry.push_back(odometry_all[f]);
+  }
+  run.seconds["odometry_s"] = clock.ms() / 1000.0;
 
   // Local maps and their features, in parallel over maps (each map's work is its own).
   clock = StopWatch();

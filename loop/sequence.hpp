@@ -3,7 +3,8 @@
 //   scans      simulated (a seeded street world along the true trajectory, ray-cast by an
 //              HDL-64-like LiDAR) or read from a KITTI layout (velodyne/NNNNNN.bin), one every
 //              scan_spacing metres of travel;
-//   odometry   the drift model of generators/odometry.hpp on the true trajectory;
+//   odometry   the drift model of generators/odometry.hpp on the true trajectory, or scan-to-scan
+//              GICP on the scans (frontend/scan_odometry.hpp);
 //   local maps every map_length metres of odometry travel (loop/local_maps.hpp);
 //   features   the 3d (ISS + B-SHOT) or 2d (BEV + ORB) front end on each map;
 //   retrieval  HBST votes over all older maps (loop/retrieval.hpp);
@@ -24,6 +25,7 @@
 
 #include "datasets/trajectory.hpp"
 #include "frontend/extract.hpp"
+#include "frontend/scan_odometry.hpp"
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
 #include "generators/world.hpp"
@@ -47,7 +49,11 @@ struct LoopConfig {
   int first_frame = 0;       ///< sequence index of truth[0] (file names)
   WorldParams world;
   LidarParams lidar;
+  /// "drift": the drift model on the true poses; "gicp": scan-to-scan GICP on the scans used
+  /// (the pose graph weighs its steps by the drift model's sigmas either way).
+  std::string odometry = "drift";
   DriftParams drift;
+  ScanOdometryParams gicp;
   double scan_spacing = 2.0;  ///< [m] travel between the scans used
   LocalMapParams maps;
   RetrievalParams retrieval;
