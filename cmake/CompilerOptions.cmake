@@ -2,8 +2,11 @@
 function(verifybench_set_options target)
   target_compile_features(${target} PUBLIC cxx_std_17)
   if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
-    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wno-maybe-uninitialized
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic
       -fno-math-errno)  # lets sqrt vectorise; we never read errno after maths
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
+    endif()
   endif()
 endfunction()
 

@@ -386,6 +386,8 @@ TEST(LoopCli, BadInputIsRefusedWithExitCode2) {
          "give one of --trajectory");
   expect("--trajectory " + (dir / "ok.txt").string() + " --pipeline fpfh" + out, "pipeline 'fpfh'");
   expect("--trajectory " + (dir / "ok.txt").string() + " --solvers nope" + out, "unknown solver");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --first-frame 1 --last-frame 1" + out,
+         "--last-frame 1 is not after --first-frame 1");
   expect("--trajectory " + (dir / "ok.txt").string() + " --odometry lidar" + out,
          "--odometry: 'lidar' is not drift or gicp");
   expect("--trajectory " + (dir / "ok.txt").string() + " --trajectory-frame camera" + out,
