@@ -116,11 +116,13 @@ class PathIndex {
 
  private:
   long long cell(double v) const { return static_cast<long long>(std::floor(v / bucket_)); }
-  static long long pack(long long x, long long y) { return (x << 32) ^ (y & 0xffffffffLL); }
-  long long key(double x, double y) const { return pack(cell(x), cell(y)); }
+  static std::uint64_t pack(long long x, long long y) {  // unsigned: no shift of a negative
+    return (static_cast<std::uint64_t>(x) << 32) ^ (static_cast<std::uint64_t>(y) & 0xffffffffULL);
+  }
+  std::uint64_t key(double x, double y) const { return pack(cell(x), cell(y)); }
   double bucket_;
   std::vector<Sample> samples_;
-  std::unordered_map<long long, std::vector<int>> grid_;
+  std::unordered_map<std::uint64_t, std::vector<int>> grid_;
 };
 
 struct Placer {
