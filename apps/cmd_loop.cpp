@@ -39,7 +39,9 @@ void add_loop_options(Options& o) {
       .add("world-kerb-density", "P", "0.45", "chance of a pole, tree, car or clutter in a kerb cell");
   o.group("odometry")
       .add("odometry", "drift|gicp", "drift",
-           "drift: the drift model below on the true poses; gicp: PCL GICP from scan to scan")
+           "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to a "
+           "local map of the last --gicp-map-scans scans")
+      .add("gicp-map-scans", "K", "5", "gicp: scans in the local map (1 = scan to scan)")
       .add("gicp-voxel", "M", "1", "gicp: scans downsampled to this voxel")
       .add("gicp-max-distance", "M", "1", "gicp: correspondence distance")
       .add("drift-trans", "F", "0.01", "translation sigma per metre of step")
@@ -122,6 +124,7 @@ LoopConfig loop_config(const Options& o) {
   }
   c.gicp.voxel = o.real("gicp-voxel", 0.01, 100.0);
   c.gicp.max_correspondence = o.real("gicp-max-distance", 0.01, 1000.0);
+  c.gicp.map_scans = static_cast<int>(o.integer("gicp-map-scans", 1, 1000));
   c.drift.trans_rel = o.real("drift-trans", 0.0, 1.0);
   c.drift.yaw_deg = o.real("drift-yaw-deg", 0.0, 90.0);
   c.drift.tilt_deg = o.real("drift-tilt-deg", 0.0, 90.0);
@@ -179,7 +182,8 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"odometry", c.odometry},
                {"gicp", {{"voxel_m", c.gicp.voxel},
                          {"max_correspondence_m", c.gicp.max_correspondence},
-                         {"max_iterations", c.gicp.max_iterations}}},
+                         {"max_iterations", c.gicp.max_iterations},
+                         {"map_scans", c.gicp.map_scans}}},
                {"drift", {{"trans_rel", c.drift.trans_rel},
                           {"yaw_deg_per_sqrt_m", c.drift.yaw_deg},
                           {"tilt_deg_per_sqrt_m", c.drift.tilt_deg}}},

@@ -1,8 +1,9 @@
 #pragma once
 // LiDAR odometry from the scans themselves: each scan, voxelised, registered by PCL's generalized
-// ICP (Segal et al. 2009) to the previous one, started from the previous step (constant
-// velocity); the poses are the composition of the steps from a given first pose. A real
-// odometry's drift, for loop-closure runs on recorded or simulated scans (`loop --odometry gicp`).
+// ICP (Segal et al. 2009) to a local map of the last map_scans scans (scan to map; 1 = scan to
+// scan), started from the previous step (constant velocity); the poses are the composition of the
+// steps from a given first pose. A real odometry's drift, for loop-closure runs on recorded or
+// simulated scans (`loop --odometry gicp`).
 #include <functional>
 #include <vector>
 
@@ -15,6 +16,7 @@ struct ScanOdometryParams {
   double voxel = 1.0;                ///< [m] scans downsampled before registration
   double max_correspondence = 1.0;   ///< [m] GICP correspondence distance
   int max_iterations = 30;
+  int map_scans = 5;  ///< scans in the local map registered to (1 = scan to scan)
   /// Throws std::invalid_argument naming the field and value.
   void validate() const;
 };
