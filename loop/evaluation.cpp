@@ -1,0 +1,132 @@
+#include "loop/evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace verifybench {
+
+namespace {
+
+// Sigmas of the odometry between two anchors `length` metres apart under the drift model: the
+// per-axis translation noise adds up to at most trans_rel * L, the yaw walk's sigma is
+// yaw * sqrt(L) and swings the end point sideways by about that times L / sqrt(3).
+Eigen::Matrix<double, 6, 1> odometry_sigma(const DriftParams& d, double length) {
+  const double deg = M_PI / 180.0, L = std::max(length, 1.0);
+  const double yaw = std::max(d.yaw_deg * deg * std::sqrt(L), 1e-4);
+  const double tilt = std::max(d.tilt_deg * deg * std::sqrt(L), 1e-4);
+  const double trans = std::max(std::hypot(d.trans_rel * L, yaw * L / std::sqrt(3.0)), 0.05);
+  Eigen::Matrix<double, 6, 1> s;
+  s << tilt, tilt, yaw, trans, trans, trans;
+  return s;
+}
+
+ClosureScore score_at(const std::vector<const ClosureRow*>& rows, int positives,
+                      const std::function<bool(const ClosureRow&)>& accept) {
+  std::vector<bool> accepted, correct;
+  for (const ClosureRow* r : rows) {
+    accepted.push_back(r->record.status != "error" && accept(*r));
+    correct.push_back(r->correct);
+  }
+  return score_closures(accepted, correct, positives);
+}
+
+}  // namespace
+
+void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& maps, LoopRun& run) {
+  const int positives = static_cast<int>(run.true_closures.size());
+  std::vector<Rigid<3>> anchors_odo;
+  for (const LocalMap& m : maps) anchors_odo.push_back(m.T_world_map_odometry);
+  std::vector<PoseEdge> odometry_edges;
+  for (int k = 0; k + 1 < static_cast<int>(maps.size()); ++k) {
+    PoseEdge e;
+    e.from = k;
+    e.to = k + 1;
+    e.T_from_to = anchors_odo[k].inverse() * anchors_odo[k + 1];
+    e.sigma = odometry_sigma(config.drift, e.T_from_to.translation().norm());
+    odometry_edges.push_back(e);
+  }
+  // Each scan's pose from its map's anchor: T_world_anchor * (odometry anchor -> scan).
+  std::vector<int> map_of_frame(run.frames.size(), 0);
+  for (std::size_t i = 0, k = 0; i < run.frames.size(); ++i) {
+    while (k + 1 < maps.size() && run.frames[i] > maps[k].frames.back()) ++k;
+    map_of_frame[i] = static_cast<int>(k);
+  }
+  auto scan_poses = [&](const std::vector<Rigid<3>>& anchors) {
+    std::vector<Rigid<3>> out;
+    for (std::size_t i = 0; i < run.frames.size(); ++i) {
+      const int k = map_of_frame[i];
+      out.push_back(anchors[k] * anchors_odo[k].inverse() * run.odometry[i]);
+    }
+    return out;
+  };
+  run.ape_without = absolute_pose_error(run.odometry, run.truth);
+  const double deg = M_PI / 180.0;
+  for (const std::string& name : config.solvers) {
+    SolverSummary sum;
+    sum.solver = name;
+    std::vector<const ClosureRow*> rows;
+    for (const ClosureRow& r : run.rows) {
+      if (r.record.solver == name) rows.push_back(&r);
+    }
+    sum.score = score_at(rows, positives, [](const ClosureRow& r) { return r.record.accepted; });
+    int max_inliers = 0;
+    bool has_p = false;
+    std::vector<PoseEdge> edges = odometry_edges;
+    for (const ClosureRow* r : rows) {
+      sum.inliers_mean += r->record.inliers;
+      sum.time_ms_mean += r->record.time_ms;
+      sum.calibration_ms_mean += r->record.calibration_ms;
+      max_inliers = std::max(max_inliers, r->record.inliers);
+      has_p = has_p || std::isfinite(r->record.p_value);
+      if (!r->record.accepted) continue;
+      ++sum.accepted;
+      PoseEdge e;
+      e.from = r->match;
+      e.to = r->query;
+      e.T_from_to = r->T_estimate;
+      e.loop = true;
+      const double rot = config.loop_sigma_rot_deg * deg, tr = config.loop_sigma_trans;
+      if (r->record.dim == 2) {  // a planar estimate says nothing of z, roll and pitch
+        e.sigma << 0.5, 0.5, rot, tr, tr, 10.0;
+      } else {
+        e.sigma << rot, rot, rot, tr, tr, tr;
+      }
+      edges.push_back(e);
+    }
+    if (!rows.empty()) {
+      sum.inliers_mean /= static_cast<double>(rows.size());
+      sum.time_ms_mean /= static_cast<double>(rows.size());
+      sum.calibration_ms_mean /= static_cast<double>(rows.size());
+    }
+    for (int K = 1; K <= max_inliers + 1; ++K) {
+      const ClosureScore s =
+          score_at(rows, positives, [K](const ClosureRow& r) { return r.record.inliers >= K; });
+      sum.count_curve.push_back({static_cast<double>(K), s});
+      if (s.fp == 0 && s.tp > 0) {
+        sum.max_recall_full_precision = std::max(sum.max_recall_full_precision, s.recall);
+      }
+    }
+    if (has_p) {
+      for (int e = 1; e <= 12; ++e) {
+        const double alpha = std::pow(10.0, -e);
+        sum.alpha_curve.push_back(
+            {alpha, score_at(rows, positives, [alpha](const ClosureRow& r) {
+               return std::isfinite(r.record.p_value) && r.record.p_value < alpha;
+             })});
+      }
+    }
+    sum.loop_edges = static_cast<int>(edges.size() - odometry_edges.size());
+    PoseGraphParams gp;
+    const PoseGraphResult plain = optimise_pose_graph(anchors_odo, edges, gp);
+    gp.robust = true;
+    const PoseGraphResult robust = optimise_pose_graph(anchors_odo, edges, gp);
+    sum.poses_with = scan_poses(plain.poses);
+    sum.poses_with_robust = scan_poses(robust.poses);
+    sum.ape_with = absolute_pose_error(sum.poses_with, run.truth);
+    sum.ape_with_robust = absolute_pose_error(sum.poses_with_robust, run.truth);
+    run.summary.push_back(std::move(sum));
+  }
+}
+
+}  // namespace verifybench
