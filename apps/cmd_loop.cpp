@@ -39,9 +39,9 @@ void add_loop_options(Options& o) {
       .add("world-kerb-density", "P", "0.45", "chance of a pole, tree, car or clutter in a kerb cell");
   o.group("odometry")
       .add("odometry", "drift|gicp", "drift",
-           "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to a "
-           "local map of the last --gicp-map-scans scans")
-      .add("gicp-map-scans", "K", "5", "gicp: scans in the local map (1 = scan to scan)")
+           "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to the "
+           "last --gicp-map-scans scans")
+      .add("gicp-map-scans", "K", "1", "gicp: scans in the local map (1 = scan to scan)")
       .add("gicp-voxel", "M", "1", "gicp: scans downsampled to this voxel")
       .add("gicp-max-distance", "M", "1", "gicp: correspondence distance")
       .add("drift-trans", "F", "0.01", "translation sigma per metre of step")
