@@ -215,8 +215,7 @@ TEST(Ape, SymmetricCaseByHandAndInvariantToARigidMotion) {
   const vb::Rigid<3> M = pose(40, -7, 1.1) * vb::perturbation({0.1, -0.2, 0.05}, {0, 0, 3});
   for (auto& T : est) T = M * T;
   EXPECT_NEAR(vb::absolute_pose_error(est, truth).rmse, d, 1e-9);
-  // One pose off by 4 m along z, others exact on a non-planar set: rmse = sqrt(mean e^2) with
-  // the aligned residuals; at least the order holds: max >= rmse >= mean >= median.
+  // Fewer than 3 poses leave the alignment undetermined: refused.
   EXPECT_THROW(vb::absolute_pose_error({truth[0]}, {truth[0]}), std::invalid_argument);
 }
 
