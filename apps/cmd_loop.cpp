@@ -222,14 +222,14 @@ int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string
   const bool quiet = o.flag("quiet");
   std::unique_ptr<Progress> bar;
   std::string stage;
-  const LoopRun run = run_loop(config, [&](const std::string& s, long long done, long long total) {
+  // One progress line per stage (scans and maps, verification, ...), each with its own ETA.
+  const LoopRun run = run_loop(config, [&](const std::string& s, long long, long long total) {
     if (quiet) return;
     if (s != stage) {
       stage = s;
       bar = std::make_unique<Progress>("loop " + s, total, true);
     }
     bar->advance(1);
-    (void)done;
   });
   bar.reset();
   const nlohmann::json report =
