@@ -48,6 +48,7 @@ static void BM_Dump6614(benchmark::State& state, const std::string& algorithm) {
 static void Args(benchmark::internal::Benchmark* b) {
   for (int n : {1000, 5000})
     for (int ratio : {50, 90, 99}) b->Args({n, ratio});
+  b->ArgNames({"n", "outliers_pct"});
   b->Unit(benchmark::kMillisecond);
 }
 

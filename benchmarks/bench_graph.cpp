@@ -21,8 +21,9 @@ static void BM_CompatibilityGraph(benchmark::State& state) {
       benchmark::Counter(pairs, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK_TEMPLATE(BM_CompatibilityGraph, 3)
+    ->ArgName("n")
     ->Arg(500)
     ->Arg(2000)
     ->Arg(6614)
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_TEMPLATE(BM_CompatibilityGraph, 2)->Arg(500)->Arg(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_CompatibilityGraph, 2)->ArgName("n")->Arg(500)->Arg(2000)->Unit(benchmark::kMillisecond);

@@ -85,6 +85,7 @@ void BM_Hbst(benchmark::State& state, bool exact) {
 
 void Sizes(benchmark::internal::Benchmark* b) {
   for (int n : {1000, 10000, 100000}) b->Args({n, 64});
+  b->ArgNames({"n", "leaf"});
   b->Unit(benchmark::kMillisecond);
 }
 

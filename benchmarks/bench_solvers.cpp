@@ -27,6 +27,7 @@ static void BM_Solver(benchmark::State& state, const std::string& name) {
 static void Args(benchmark::internal::Benchmark* b) {
   for (int n : {100, 500, 1000, 2000})
     for (int ratio : {50, 90, 99}) b->Args({n, ratio});
+  b->ArgNames({"n", "outliers_pct"});
   b->Unit(benchmark::kMillisecond);
 }
 BENCHMARK_CAPTURE(BM_Solver, clique, std::string("clique"))->Apply(Args);
@@ -36,6 +37,7 @@ BENCHMARK_CAPTURE(BM_Solver, ransac, std::string("ransac"))->Apply(Args);
 // runs the paper's fixed 10,000 hypotheses (target: under 20 ms median, single thread).
 static void FamilyArgs(benchmark::internal::Benchmark* b) {
   for (int ratio : {50, 90, 99}) b->Args({1000, ratio});
+  b->ArgNames({"n", "outliers_pct"});
   b->Unit(benchmark::kMillisecond);
 }
 BENCHMARK_CAPTURE(BM_Solver, ransac_adaptive, std::string("ransac-adaptive"))->Apply(FamilyArgs);
