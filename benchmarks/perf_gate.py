@@ -57,12 +57,16 @@ def write_atomic(path, text):
 
 
 def git_commit():
+    """The commit measured; "-dirty" when tracked files other than the gate's own records differ."""
     try:
-        out = subprocess.run(["git", "-C", ROOT, "describe", "--always", "--dirty", "--abbrev=12"],
-                             capture_output=True, text=True, check=True)
-        return out.stdout.strip()
+        head = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short=12", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+        changed = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no", "--",
+                                  ".", ":!benchmarks/perf_baseline.json", ":!benchmarks/perf_trend.tsv"],
+                                 capture_output=True, text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
+    return head + ("-dirty" if changed else "")
 
 
 def valgrind_version():
