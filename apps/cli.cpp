@@ -163,4 +163,25 @@ void print_point(const std::vector<TrialRecord>& rows) {
   }
 }
 
+void add_shard_option(Options& o) {
+  o.group("sharding")
+      .add("shard", "I/N", "",
+           "run only the I-th of N deterministic, balanced slices of the work (1 <= I <= N); "
+           "`verifybench merge` joins the N reports into the unsharded one");
+}
+
+Shard shard(const Options& o) {
+  if (!o.given("shard")) return Shard{};
+  try {
+    return parse_shard(o.text("shard"));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+nlohmann::json shard_context(const Options& o, long long units, const std::vector<long long>& row_units) {
+  if (!o.given("shard")) return nullptr;
+  return shard_block(shard(o), units, row_units);
+}
+
 }  // namespace verifybench::cli

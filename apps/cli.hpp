@@ -10,6 +10,7 @@
 #include "apps/options.hpp"
 #include "reports/record.hpp"
 #include "reports/report.hpp"
+#include "reports/shard.hpp"
 #include "solvers/params.hpp"
 
 namespace verifybench::cli {
@@ -34,15 +35,26 @@ nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c);
 void add_prior_options(Options& o, const std::string& what);
 std::pair<double, double> prior_sigmas(const Options& o);
 
+/// --shard I/N: run only the I-th of N slices of the work (`verifybench merge` joins them).
+void add_shard_option(Options& o);
+/// The slice asked for (the whole work without --shard); a UsageError on a malformed value.
+Shard shard(const Options& o);
+/// The report's context.shard block when --shard was given, else null.
+nlohmann::json shard_context(const Options& o, long long units, const std::vector<long long>& row_units);
+
 /// One summary line per aggregate of `rows` on stderr.
 void print_point(const std::vector<TrialRecord>& rows);
 
 /// Writes the report atomically and prints its path; returns 1 when a row has status "error"
 /// (its message printed by `describe`), else 0.
+/// `shard` (shard_context) goes into the context when not null.
 template <class Row, class Describe>
 int finish(const std::string& out, const nlohmann::json& parameters, const std::vector<Row>& rows,
-           const std::vector<std::string>& argv, std::uint64_t seed, Describe describe) {
-  write_json_atomic(out, make_report(make_context(argv, seed), parameters, rows));
+           const std::vector<std::string>& argv, std::uint64_t seed, Describe describe,
+           const nlohmann::json& shard = nullptr) {
+  nlohmann::json context = make_context(argv, seed);
+  if (!shard.is_null()) context["shard"] = shard;
+  write_json_atomic(out, make_report(context, parameters, rows));
   std::cout << out << "\n";
   for (const auto& r : rows) {
     if (r.status == "error") {
@@ -63,6 +75,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_extract(const std::vector<std::string>& args);
 int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string>& argv);
+int cmd_merge(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 }  // namespace verifybench
 
 namespace verifybench::cli {

@@ -22,6 +22,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
       .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
       .add("out", "FILE.json", "", "report path (required; written atomically)")
       .add("quiet", "", "", "no progress lines");
+  cli::add_shard_option(o);
   if (o.parse_or_help(
           args,
           "usage: verifybench dimacs FILE.clq... [options] --out FILE.json\n"
@@ -36,12 +37,17 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   params.seed = o.seed("seed");
   const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30))
                                 << 20;
+  const Shard shard = cli::shard(o);  // one unit per file
+  const long long units = static_cast<long long>(o.positional().size());
   const std::string out = cli::report_path(o);
 
   std::vector<CliqueRecord> rows;
-  Progress progress("dimacs", static_cast<long long>(o.positional().size() * names.size()),
+  std::vector<long long> row_units;
+  Progress progress("dimacs", shard.owned(units) * static_cast<long long>(names.size()),
                     !o.flag("quiet"));
-  for (const std::string& file : o.positional()) {
+  for (long long unit = 0; unit < units; ++unit) {
+    if (!shard.owns(unit)) continue;
+    const std::string& file = o.positional()[static_cast<std::size_t>(unit)];
     const BitGraph g = read_dimacs(file, max_bytes);
     const std::filesystem::path path(file);
     std::optional<int> known;
@@ -57,6 +63,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
                               " known=" + (known ? std::to_string(*known) : "-") + " " + r.status +
                               " " + std::to_string(r.time_ms) + " ms");
       rows.push_back(std::move(r));
+      row_units.push_back(unit);
     }
   }
   const nlohmann::json parameters = {{"mode", "dimacs"},
@@ -66,7 +73,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
                                      {"seed", params.seed}};
   return cli::finish(out, parameters, rows, argv, params.seed, [](const CliqueRecord& r) {
     return r.algorithm + " on " + r.graph + ": " + r.message;
-  });
+  }, cli::shard_context(o, units, row_units));
 }
 
 }  // namespace verifybench

@@ -22,6 +22,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
            "the expected decision: positive, negative, or auto (MANIFEST.tsv beside the dump; "
            "else negative when its labels hold no true inlier; else unknown)");
   cli::add_prior_options(o, "the set (it needs a ground truth)");
+  cli::add_shard_option(o);
   if (o.parse_or_help(args, "usage: verifybench run --dump DIR [options] --out FILE.json\n"))
     return 0;
   const std::string dir = o.required("dump");
@@ -29,6 +30,8 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const SolverParams params = cli::solver_params(o);
   const SuccessCriteria crit = cli::criteria(o);
   const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
+  const Shard shard = cli::shard(o);
+  const long long units = static_cast<long long>(names.size()) * trials;  // (solver, trial)
   const std::string out = cli::report_path(o);
   const auto [prior_rot, prior_trans] = cli::prior_sigmas(o);
   const std::string expected_text = o.text("expected");
@@ -58,9 +61,9 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
           }
           add_pose_prior(s, prior_rot, prior_trans, params.seed);
         }
-        Progress progress("run", static_cast<long long>(names.size()) * trials, !o.flag("quiet"));
+        Progress progress("run", shard.owned(units), !o.flag("quiet"));
         return run_on_set(names, s, dir, trials, params.seed, params, crit,
-                          [&] { progress.advance(); });
+                          [&] { progress.advance(); }, shard);
       },
       dump.set);
   if (!o.flag("quiet")) cli::print_point(rows);
@@ -78,7 +81,13 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
       // |R^T R - I| of the ground truth as the dump published it (projected onto SO(n) for use).
       {"ground_truth_rotation_residual",
        std::visit([](const auto& s) { return s.truth.rotation_residual; }, dump.set)}};
-  return cli::finish(out, parameters, rows, argv, params.seed, cli::describe_error);
+  std::vector<long long> row_units;
+  for (const auto& r : rows) {
+    const long long s = std::find(names.begin(), names.end(), r.solver) - names.begin();
+    row_units.push_back(s * trials + r.trial);
+  }
+  return cli::finish(out, parameters, rows, argv, params.seed, cli::describe_error,
+                     cli::shard_context(o, units, row_units));
 }
 
 }  // namespace verifybench

@@ -1,4 +1,5 @@
 // `verifybench sweep`: a robustness sweep on synthetic sets.
+#include <algorithm>
 #include <cmath>
 #include <tuple>
 
@@ -54,6 +55,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
       .add("score-separation", "D", "1",
            "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none");
   cli::add_prior_options(o, "each set");
+  cli::add_shard_option(o);
   if (o.parse_or_help(args, "usage: verifybench sweep [options] --out FILE.json\n")) return 0;
   SweepConfig c;
   c.solvers = cli::solver_names(o);
@@ -82,6 +84,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.params = cli::solver_params(o);
   c.seed = c.params.seed;
   c.criteria = cli::criteria(o);
+  c.shard = cli::shard(o);
   const std::string out = cli::report_path(o);
 
   nlohmann::json parameters = cli::params_json(c.params, c.criteria);
@@ -107,11 +110,18 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
                          {"solvers", c.solvers}};
   SweepProgress point_done;
   if (!o.flag("quiet")) point_done = cli::print_point;
-  Progress progress("sweep",
-                    static_cast<long long>(c.dims.size() * c.outlier_ratios.size()) * c.trials,
-                    !o.flag("quiet"));
+  Progress progress("sweep", c.shard.owned(c.units()), !o.flag("quiet"));
   const auto rows = run_sweep(c, point_done, [&] { progress.advance(); });
-  return cli::finish(out, parameters, rows, argv, c.seed, cli::describe_error);
+  // Each row's unit (SweepConfig::shard): its dim, ratio and trial, as the sweep numbered them.
+  std::vector<long long> row_units;
+  for (const auto& r : rows) {
+    const long long d = std::find(c.dims.begin(), c.dims.end(), r.dim) - c.dims.begin();
+    const long long k = std::find(c.outlier_ratios.begin(), c.outlier_ratios.end(), *r.outlier_ratio) -
+                        c.outlier_ratios.begin();
+    row_units.push_back((d * static_cast<long long>(c.outlier_ratios.size()) + k) * c.trials + r.trial);
+  }
+  return cli::finish(out, parameters, rows, argv, c.seed, cli::describe_error,
+                     cli::shard_context(o, c.units(), row_units));
 }
 
 }  // namespace verifybench

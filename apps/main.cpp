@@ -27,6 +27,7 @@ const Command kCommands[] = {
      [](const auto& args, const auto&) { return vb::cmd_extract(args); }},
     {"loop", "loop closure on a sequence: local maps, retrieval, solvers, P/R/F1, pose graph, APE",
      vb::cmd_loop},
+    {"merge", "the reports of every shard (--shard I/N) of one command joined into one", vb::cmd_merge},
 };
 
 std::string usage() {

@@ -90,11 +90,12 @@ std::uint64_t bits_of(double v) {
 }
 
 template <int Dim>
-void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecord>& rows,
-                 const TrialProgress& on_trial) {
+void sweep_point(const SweepConfig& config, double ratio, long long first_unit,
+                 std::vector<TrialRecord>& rows, const TrialProgress& on_trial) {
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const auto& name : config.solvers) solvers.push_back(SolverRegistry::create(name));
   for (int t = 0; t < config.trials; ++t) {
+    if (!config.shard.owns(first_unit + t)) continue;
     SyntheticParams sp = config.shape;
     sp.n = config.n;
     sp.outlier_ratio = ratio;
@@ -139,14 +140,16 @@ void sweep_point(const SweepConfig& config, double ratio, std::vector<TrialRecor
 std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgress& progress,
                                    const TrialProgress& on_trial) {
   std::vector<TrialRecord> rows;
+  long long unit = 0;
   for (int dim : config.dims) {
     for (double ratio : config.outlier_ratios) {
       std::vector<TrialRecord> point;
       if (dim == 2)
-        sweep_point<2>(config, ratio, point, on_trial);
+        sweep_point<2>(config, ratio, unit, point, on_trial);
       else
-        sweep_point<3>(config, ratio, point, on_trial);
-      if (progress) progress(point);
+        sweep_point<3>(config, ratio, unit, point, on_trial);
+      unit += config.trials;
+      if (progress && !point.empty()) progress(point);
       const bool failed = !point.empty() && point.back().status == "error";
       rows.insert(rows.end(), point.begin(), point.end());
       if (failed) return rows;
@@ -160,11 +163,13 @@ std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
                                     const LabeledSet<Dim>& set, const std::string& dataset,
                                     int trials, std::uint64_t seed, const SolverParams& params,
                                     const SuccessCriteria& criteria,
-                                    const TrialProgress& on_trial) {
+                                    const TrialProgress& on_trial, const Shard& shard) {
   std::vector<TrialRecord> rows;
-  for (const auto& name : solvers) {
+  for (std::size_t s = 0; s < solvers.size(); ++s) {
+    const std::string& name = solvers[s];
     const auto solver = SolverRegistry::create(name);
     for (int t = 0; t < trials; ++t) {
+      if (!shard.owns(static_cast<long long>(s) * trials + t)) continue;
       SolverParams p = params;
       p.seed = derive_seed(seed, {std::uint64_t(t)});
       TrialRecord r = evaluate(*solver, name, set, p, criteria);
@@ -220,10 +225,12 @@ template TrialRecord evaluate<3>(const Solver&, const std::string&, const Labele
 template std::vector<TrialRecord> run_on_set<2>(const std::vector<std::string>&,
                                                 const LabeledSet<2>&, const std::string&, int,
                                                 std::uint64_t, const SolverParams&,
-                                                const SuccessCriteria&, const TrialProgress&);
+                                                const SuccessCriteria&, const TrialProgress&,
+                                                const Shard&);
 template std::vector<TrialRecord> run_on_set<3>(const std::vector<std::string>&,
                                                 const LabeledSet<3>&, const std::string&, int,
                                                 std::uint64_t, const SolverParams&,
-                                                const SuccessCriteria&, const TrialProgress&);
+                                                const SuccessCriteria&, const TrialProgress&,
+                                                const Shard&);
 
 }  // namespace verifybench

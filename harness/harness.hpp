@@ -10,6 +10,7 @@
 #include "core/correspondences.hpp"
 #include "generators/synthetic.hpp"
 #include "reports/record.hpp"
+#include "reports/shard.hpp"
 #include "solvers/solver.hpp"
 
 namespace verifybench {
@@ -39,6 +40,12 @@ struct SweepConfig {
   std::uint64_t seed = 1;
   SolverParams params;
   SuccessCriteria criteria;
+  /// Runs only this slice of the sets; set (dim index d, ratio index r, trial t) is unit
+  /// (d * ratios + r) * trials + t.
+  Shard shard;
+  long long units() const {
+    return static_cast<long long>(dims.size() * outlier_ratios.size()) * trials;
+  }
 };
 
 /// Called after each (dim, outlier ratio) point with the rows of that point.
@@ -54,13 +61,14 @@ std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgres
                                    const TrialProgress& on_trial = {});
 
 /// Runs each solver `trials` times on one set (a real dump); trial t uses solver seed
-/// derive_seed(seed, {t}).
+/// derive_seed(seed, {t}). With a shard, only the (solver s, trial t) pairs whose unit
+/// s * trials + t it owns.
 template <int Dim>
 std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
                                     const LabeledSet<Dim>& set, const std::string& dataset,
                                     int trials, std::uint64_t seed, const SolverParams& params,
                                     const SuccessCriteria& criteria,
-                                    const TrialProgress& on_trial = {});
+                                    const TrialProgress& on_trial = {}, const Shard& shard = {});
 
 /// Runs each named clique algorithm once on `g` (DIMACS mode): one row per algorithm, its clique
 /// checked (a non-clique is status "error"), 1-based ids, status ok | time_limit | unproven.
