@@ -1,0 +1,41 @@
+"""verifybench from Python: geometric verification solvers on numpy arrays.
+
+    import verifybench as vb
+    s = vb.synthetic(n=1000, outliers=0.9, dim=3, seed=1)
+    r = vb.solve("clique", s["src"], s["dst"], eps=0.1)
+    r["inliers"], r["T"], r["accepted"]
+    df = vb.load_report("out/sweep.json")        # one row per result, as pandas
+
+The compiled part (_core) is built by the project's CMake into build/python/verifybench; put
+build/python on PYTHONPATH and use Debian's /usr/bin/python3.
+"""
+import json
+
+from ._core import (InputError, __version__, generators, git_commit, read_dump, solve,  # noqa: F401
+                    solvers, synthetic)
+
+__all__ = ["InputError", "__version__", "generators", "git_commit", "load_report", "read_dump",
+           "solve", "solvers", "synthetic"]
+
+
+def load_report(path, table="results"):
+    """A verifybench JSON report (sweep, run, dimacs, merge) as a pandas DataFrame.
+
+    table: "results" (one row per solver and set), "aggregates" or "decisions". The report's
+    context and parameters are kept in DataFrame.attrs.
+    """
+    import pandas as pd
+
+    with open(path) as f:
+        report = json.load(f)
+    if not isinstance(report, dict) or report.get("schema_version") != 1:
+        raise InputError(f"{path}: field 'schema_version': not a verifybench report (version 1)")
+    if table not in ("results", "aggregates", "decisions"):
+        raise ValueError(f"table {table!r}: expected 'results', 'aggregates' or 'decisions'")
+    rows = report.get(table, [])
+    if not isinstance(rows, list):
+        raise InputError(f"{path}: field {table!r}: not a list")
+    frame = pd.json_normalize(rows) if rows else pd.DataFrame()
+    frame.attrs["context"] = report.get("context", {})
+    frame.attrs["parameters"] = report.get("parameters", {})
+    return frame

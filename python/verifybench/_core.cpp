@@ -1,0 +1,244 @@
+// The `verifybench` Python module's compiled part (pybind11): the solver registry on numpy
+// arrays, the synthetic generators and the dump readers. Arrays go in as (n, dim) float64
+// (copied once into the column-major sets the solvers use) and come back as numpy arrays.
+// Bad input raises ValueError (unknown names, shapes, non-finite values, bad parameters) or
+// verifybench.InputError (a ValueError: a malformed file, naming file, line and field).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <variant>
+
+#include "acceptance/calibration.hpp"
+#include "core/errors.hpp"
+#include "datasets/dump_format.hpp"
+#include "generators/synthetic.hpp"
+#include "harness/builtin.hpp"
+#include "solvers/registry.hpp"
+#include "verifybench/version.hpp"
+
+namespace py = pybind11;
+namespace vb = verifybench;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// (n, dim) rows -> dim x n columns; names the argument, row and column of a bad value.
+template <int Dim>
+Eigen::Matrix<double, Dim, Eigen::Dynamic> columns(const Array& a, const char* name) {
+  const auto r = a.unchecked<2>();
+  Eigen::Matrix<double, Dim, Eigen::Dynamic> m(Dim, r.shape(0));
+  for (py::ssize_t i = 0; i < r.shape(0); ++i) {
+    for (int d = 0; d < Dim; ++d) {
+      const double v = r(i, d);
+      if (!std::isfinite(v)) {
+        throw std::invalid_argument(std::string(name) + "[" + std::to_string(i) + ", " +
+                                    std::to_string(d) + "] = " + std::to_string(v) +
+                                    ": not a finite number");
+      }
+      m(d, i) = v;
+    }
+  }
+  return m;
+}
+
+int dimension_of(const Array& src, const Array& dst) {
+  if (src.ndim() != 2 || dst.ndim() != 2) {
+    throw std::invalid_argument("src and dst must be 2-D arrays of shape (n, 2) or (n, 3); got " +
+                                std::to_string(src.ndim()) + "-D and " +
+                                std::to_string(dst.ndim()) + "-D");
+  }
+  if (src.shape(0) != dst.shape(0) || src.shape(1) != dst.shape(1)) {
+    throw std::invalid_argument("src has shape (" + std::to_string(src.shape(0)) + ", " +
+                                std::to_string(src.shape(1)) + "), dst (" +
+                                std::to_string(dst.shape(0)) + ", " + std::to_string(dst.shape(1)) +
+                                "): they must match");
+  }
+  if (src.shape(1) != 2 && src.shape(1) != 3) {
+    throw std::invalid_argument("points have " + std::to_string(src.shape(1)) +
+                                " columns: 2 (SE(2)) or 3 (SE(3)) expected");
+  }
+  if (src.shape(0) == 0) throw std::invalid_argument("src and dst are empty");
+  return static_cast<int>(src.shape(1));
+}
+
+template <int Dim>
+py::array_t<double> matrix(const vb::Rigid<Dim>& T) {
+  py::array_t<double> out({Dim + 1, Dim + 1});
+  auto w = out.mutable_unchecked<2>();
+  const Eigen::Matrix<double, Dim + 1, Dim + 1> M = T.matrix();
+  for (int i = 0; i <= Dim; ++i)
+    for (int j = 0; j <= Dim; ++j) w(i, j) = M(i, j);
+  return out;
+}
+
+template <int Dim>
+py::array_t<double> rows(const Eigen::Matrix<double, Dim, Eigen::Dynamic>& m) {
+  py::array_t<double> out({static_cast<py::ssize_t>(m.cols()), static_cast<py::ssize_t>(Dim)});
+  auto w = out.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < m.cols(); ++i)
+    for (int d = 0; d < Dim; ++d) w(i, d) = m(d, i);
+  return out;
+}
+
+template <int Dim>
+py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
+                   const std::optional<Array>& scores, const vb::SolverParams& params) {
+  vb::Correspondences<Dim> corr;
+  corr.source = columns<Dim>(src, "src");
+  corr.target = columns<Dim>(dst, "dst");
+  if (scores) {
+    if (scores->ndim() != 1 || scores->shape(0) != src.shape(0)) {
+      throw std::invalid_argument("scores must be a 1-D array of n = " +
+                                  std::to_string(src.shape(0)) + " values");
+    }
+    const auto s = scores->unchecked<1>();
+    for (py::ssize_t i = 0; i < s.shape(0); ++i) corr.score.push_back(s(i));
+  }
+  vb::validate(corr);
+  const auto solver = vb::SolverRegistry::create(name);
+  vb::Result<Dim> result;
+  std::optional<vb::Calibration> calibration;
+  double ms = 0.0;
+  {
+    py::gil_scoped_release unlocked;  // other Python threads run while the C++ search does
+    const auto start = std::chrono::steady_clock::now();
+    result = solver->solve(corr, params);
+    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (params.accept.rule == vb::AcceptParams::Rule::pvalue && result.status != vb::Status::error) {
+      calibration = vb::calibrate(*solver, corr, params, static_cast<int>(result.inliers.size()));
+      vb::decide_calibrated(result, corr, *calibration, params);
+    }
+  }
+  if (result.status == vb::Status::error) throw std::invalid_argument(name + ": " + result.message);
+  py::dict out;
+  out["solver"] = name;
+  out["dim"] = Dim;
+  out["n"] = static_cast<int>(corr.size());
+  out["inliers"] = py::array_t<long long>(static_cast<py::ssize_t>(result.inliers.size()),
+                                          std::vector<long long>(result.inliers.begin(),
+                                                                 result.inliers.end()).data());
+  out["T"] = matrix<Dim>(result.T_target_source);
+  out["accepted"] = result.accepted;
+  out["status"] = vb::to_string(result.status);
+  out["accept_rule"] = vb::to_string(params.accept.rule);
+  out["time_ms"] = ms;
+  out["graph_ms"] = result.times.graph_ms;
+  out["search_ms"] = result.times.search_ms;
+  out["fit_ms"] = result.times.fit_ms;
+  out["branch_nodes"] = result.counters.branch_nodes;
+  out["iterations"] = result.counters.iterations;
+  out["omega_upper_bound"] =
+      result.omega_upper_bound ? py::object(py::int_(*result.omega_upper_bound)) : py::object(py::none());
+  out["p_value"] = calibration ? py::object(py::float_(calibration->p_value)) : py::object(py::none());
+  out["null_threshold"] =
+      calibration ? py::object(py::int_(calibration->threshold)) : py::object(py::none());
+  out["calibration_ms"] = calibration ? calibration->ms : 0.0;
+  return out;
+}
+
+py::dict solve(const std::string& name, const Array& src, const Array& dst, double eps,
+               std::optional<double> inlier_threshold, int min_inliers, double time_limit,
+               std::uint64_t seed, int threads, const std::string& accept, double alpha,
+               int null_draws, const std::optional<Array>& scores) {
+  const int dim = dimension_of(src, dst);
+  vb::SolverParams params;
+  params.eps = eps;
+  params.inlier_threshold = inlier_threshold ? *inlier_threshold : eps;
+  params.min_inliers = min_inliers;
+  params.time_limit_s = time_limit;
+  params.seed = seed;
+  params.threads = threads;
+  params.accept.rule = vb::parse_accept_rule(accept);
+  params.accept.alpha = alpha;
+  params.accept.null_draws = null_draws;
+  params.validate();
+  return dim == 2 ? solve_dim<2>(name, src, dst, scores, params)
+                  : solve_dim<3>(name, src, dst, scores, params);
+}
+
+template <int Dim>
+py::dict set_dict(const vb::LabeledSet<Dim>& s) {
+  py::dict out;
+  out["dim"] = Dim;
+  out["src"] = rows<Dim>(s.corr.source);
+  out["dst"] = rows<Dim>(s.corr.target);
+  out["scores"] = s.corr.score.empty()
+                      ? py::object(py::none())
+                      : py::object(py::array_t<double>(static_cast<py::ssize_t>(s.corr.score.size()),
+                                                       s.corr.score.data()));
+  out["labels"] = s.truth.labels.empty()
+                      ? py::object(py::none())
+                      : py::object(py::array_t<std::uint8_t>(static_cast<py::ssize_t>(s.truth.labels.size()),
+                                                             s.truth.labels.data()));
+  out["T"] = s.truth.T_target_source ? py::object(matrix<Dim>(*s.truth.T_target_source))
+                                     : py::object(py::none());
+  out["positive"] = s.truth.positive ? py::object(py::bool_(*s.truth.positive)) : py::object(py::none());
+  return out;
+}
+
+py::dict synthetic(int n, double outliers, double noise, int dim, std::uint64_t seed,
+                   const std::string& kind, double extent, bool negative) {
+  vb::SyntheticParams p;
+  p.n = n;
+  p.outlier_ratio = outliers;
+  p.noise = noise;
+  p.seed = seed;
+  p.kind = kind;
+  p.extent = extent;
+  p.max_translation = extent / 2;
+  p.negative = negative;
+  p.validate();
+  if (dim == 2) return set_dict<2>(vb::make_synthetic<2>(p));
+  if (dim == 3) return set_dict<3>(vb::make_synthetic<3>(p));
+  throw std::invalid_argument("dim = " + std::to_string(dim) + ": 2 or 3 expected");
+}
+
+py::dict read_dump(const std::string& dir) {
+  const vb::Dump dump = vb::read_dump(dir);
+  py::dict out = std::visit([](const auto& s) { return set_dict(s); }, dump.set);
+  out["label_threshold"] =
+      dump.label_threshold ? py::object(py::float_(*dump.label_threshold)) : py::object(py::none());
+  out["path"] = dir;
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "verifybench: geometric verification solvers, generators and dump readers";
+  vb::register_builtin_solvers();
+  py::register_exception<vb::InputError>(m, "InputError", PyExc_ValueError);
+  m.attr("__version__") = vb::kVersion;
+  m.attr("git_commit") = vb::kGitCommit;
+  m.def("solvers", [] {
+    std::vector<std::string> names;
+    for (const auto& s : vb::SolverRegistry::list()) names.push_back(s.name);
+    return names;
+  }, "Names of the registered solvers (as `verifybench list` prints them).");
+  m.def("generators", [] {
+    std::vector<std::string> names;
+    for (const auto& g : vb::list_generators()) names.push_back(g.name);
+    return names;
+  }, "Names of the synthetic generator kinds.");
+  m.def("solve", &solve, py::arg("solver"), py::arg("src"), py::arg("dst"), py::kw_only(),
+        py::arg("eps") = 0.1, py::arg("inlier_threshold") = py::none(), py::arg("min_inliers") = 0,
+        py::arg("time_limit") = 60.0, py::arg("seed") = 1, py::arg("threads") = 1,
+        py::arg("accept") = "count", py::arg("alpha") = 0.001, py::arg("null_draws") = 20,
+        py::arg("scores") = py::none(),
+        "Runs one registered solver on correspondences src[i] -> dst[i] ((n, 2) or (n, 3) arrays).\n"
+        "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
+        "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value.\n"
+        "accept='count' (the paper's rule, min_inliers; 0 = 5 in 3D, 10 in 2D) or 'pvalue'.");
+  m.def("synthetic", &synthetic, py::kw_only(), py::arg("n") = 500, py::arg("outliers") = 0.5,
+        py::arg("noise") = 0.01, py::arg("dim") = 3, py::arg("seed") = 1,
+        py::arg("kind") = "uniform", py::arg("extent") = 10.0, py::arg("negative") = false,
+        "A seeded synthetic set: dict of src, dst, labels (1 = inlier), T (the true motion), scores.");
+  m.def("read_dump", &read_dump, py::arg("path"),
+        "A correspondence dump folder (dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt]).");
+}

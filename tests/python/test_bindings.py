@@ -1,0 +1,145 @@
+"""The Python module against oracles: a brute-force maximum consistent set, the generator's known
+motion and labels, the CLI on the same set, and bad input. Run by ctest (python_bindings) with
+build/python on PYTHONPATH and VERIFYBENCH_CLI naming the CLI."""
+import itertools
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import verifybench as vb
+
+
+def rotation_error_deg(Ra, Rb):
+    c = (np.trace(Ra.T @ Rb) - 1) / 2 if Ra.shape[0] == 3 else np.trace(Ra.T @ Rb) / 2
+    return np.degrees(np.arccos(np.clip(c, -1, 1)))
+
+
+def brute_force_omega(src, dst, eps):
+    """Largest set of correspondences pairwise consistent under Eq. (1), by enumeration."""
+    n = len(src)
+    ok = np.abs(np.linalg.norm(src[:, None] - src[None], axis=2) -
+                np.linalg.norm(dst[:, None] - dst[None], axis=2)) < eps
+    for size in range(n, 0, -1):
+        for subset in itertools.combinations(range(n), size):
+            if all(ok[a, b] for a, b in itertools.combinations(subset, 2)):
+                return size
+    return 0
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_clique_finds_the_brute_force_maximum(seed):
+    rng = np.random.default_rng(seed)
+    src = rng.uniform(0, 4, size=(13, 2))
+    angle = rng.uniform(-np.pi, np.pi)
+    R = np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    dst = src @ R.T + [1.0, -2.0]
+    dst[7:] = rng.uniform(0, 4, size=(6, 2))  # 6 outliers, some consistent by chance
+    r = vb.solve("clique", src, dst, eps=0.3)
+    assert r["status"] in ("ok", "rejected")
+    assert len(r["inliers"]) == brute_force_omega(src, dst, 0.3)
+    assert r["omega_upper_bound"] == len(r["inliers"])
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+@pytest.mark.parametrize("solver", ["clique", "ransac", "lo-ransac", "jcbb"])
+def test_solvers_recover_the_known_motion(dim, solver):
+    s = vb.synthetic(n=300, outliers=0.8, noise=0.01, dim=dim, seed=5)
+    r = vb.solve(solver, s["src"], s["dst"], eps=0.1)
+    assert r["accepted"]
+    assert r["T"].shape == (dim + 1, dim + 1)
+    assert rotation_error_deg(r["T"][:dim, :dim], s["T"][:dim, :dim]) < 2.0
+    assert np.linalg.norm(r["T"][:dim, dim] - s["T"][:dim, dim]) < 0.1
+    inliers = r["inliers"]
+    assert np.all(np.diff(inliers) > 0)
+    assert s["labels"][inliers].mean() > 0.95
+    assert len(inliers) >= 0.9 * s["labels"].sum()
+
+
+def test_same_answer_as_the_cli(tmp_path):
+    cli = os.environ.get("VERIFYBENCH_CLI")
+    if not cli:
+        pytest.skip("VERIFYBENCH_CLI not set")
+    s = vb.synthetic(n=400, outliers=0.9, dim=3, seed=11)
+    dump = tmp_path / "dump"
+    dump.mkdir()
+    np.savetxt(dump / "corr.txt", np.hstack([s["src"], s["dst"]]), fmt="%.17g")
+    report = tmp_path / "r.json"
+    subprocess.run([cli, "run", "--dump", str(dump), "--solvers", "clique,ransac", "--accept", "count",
+                    "--quiet", "--out", str(report)], check=True, capture_output=True)
+    rows = {row["solver"]: row for row in json.load(open(report))["results"]}
+    for solver in ("clique", "ransac"):
+        r = vb.solve(solver, s["src"], s["dst"], eps=0.1, seed=rows[solver]["solver_seed"])
+        assert len(r["inliers"]) == rows[solver]["inliers"]
+        assert np.allclose(r["T"].ravel(), rows[solver]["T_target_source"], atol=1e-9)
+        assert r["accepted"] == rows[solver]["accepted"]
+
+
+def test_calibrated_rule_accepts_a_loop_and_rejects_a_negative():
+    pos = vb.synthetic(n=500, outliers=0.95, dim=3, seed=2)
+    neg = vb.synthetic(n=500, dim=3, seed=2, negative=True)
+    assert neg["T"] is None and neg["positive"] is False
+    # eps 0.5 m: chance cliques of 7-10 in this 10 m cube (BENCHMARK section 14), over the paper's 5
+    a = vb.solve("clique", pos["src"], pos["dst"], eps=0.5, accept="pvalue")
+    b = vb.solve("clique", neg["src"], neg["dst"], eps=0.5, accept="pvalue")
+    assert a["accepted"] and a["p_value"] < 0.001
+    assert not b["accepted"] and b["p_value"] >= 0.001
+    count = vb.solve("clique", neg["src"], neg["dst"], eps=0.5)  # the paper's count rule
+    assert count["accepted"] and len(count["inliers"]) >= 5 and count["p_value"] is None
+
+
+def test_generators_are_seeded():
+    a = vb.synthetic(n=50, seed=3)
+    b = vb.synthetic(n=50, seed=3)
+    c = vb.synthetic(n=50, seed=4)
+    assert np.array_equal(a["src"], b["src"]) and np.array_equal(a["dst"], b["dst"])
+    assert not np.array_equal(a["src"], c["src"])
+    assert set(vb.generators()) >= {"uniform", "repetitive"}
+    assert "clique" in vb.solvers()
+
+
+def test_bad_input_raises_value_error_naming_it(tmp_path):
+    s = vb.synthetic(n=20, seed=1)
+    with pytest.raises(ValueError, match="unknown solver 'nope'"):
+        vb.solve("nope", s["src"], s["dst"])
+    with pytest.raises(ValueError, match="must match"):
+        vb.solve("clique", s["src"], s["dst"][:10])
+    bad = s["dst"].copy()
+    bad[4, 1] = np.nan
+    with pytest.raises(ValueError, match=r"dst\[4, 1\]"):
+        vb.solve("clique", s["src"], bad)
+    with pytest.raises(ValueError, match="columns"):
+        vb.solve("clique", np.zeros((5, 4)), np.zeros((5, 4)))
+    with pytest.raises(ValueError, match="eps"):
+        vb.solve("clique", s["src"], s["dst"], eps=-1.0)
+    with pytest.raises(ValueError, match="accept"):
+        vb.solve("clique", s["src"], s["dst"], accept="maybe")
+    (tmp_path / "corr.txt").write_text("0 0 0 1 1 1\n0 0 0 1 1 oops\n")
+    with pytest.raises(vb.InputError, match="corr.txt:2"):
+        vb.read_dump(str(tmp_path))
+
+
+def test_dump_and_report_readers(tmp_path):
+    cli = os.environ.get("VERIFYBENCH_CLI")
+    if not cli:
+        pytest.skip("VERIFYBENCH_CLI not set")
+    s = vb.synthetic(n=60, outliers=0.5, dim=2, seed=9)
+    (tmp_path / "d").mkdir()
+    np.savetxt(tmp_path / "d" / "corr.txt", np.hstack([s["src"], s["dst"]]), fmt="%.17g")
+    np.savetxt(tmp_path / "d" / "label.txt", s["labels"], fmt="%d")
+    d = vb.read_dump(str(tmp_path / "d"))
+    assert d["dim"] == 2 and np.array_equal(d["src"], s["src"]) and np.array_equal(d["labels"], s["labels"])
+    report = tmp_path / "sweep.json"
+    subprocess.run([cli, "sweep", "--solvers", "clique,ransac", "--n", "50", "--outliers", "0.5,0.9",
+                    "--trials", "3", "--quiet", "--out", str(report)], check=True, capture_output=True)
+    df = vb.load_report(str(report))
+    assert len(df) == len(json.load(open(report))["results"]) == 2 * 2 * 3
+    assert set(df["solver"]) == {"clique", "ransac"}
+    assert df.attrs["context"]["seed"] == 1
+    agg = vb.load_report(str(report), table="aggregates")
+    assert len(agg) == 4 and (agg["trials"] == 3).all()
+    (tmp_path / "x.json").write_text('{"hello": 1}')
+    with pytest.raises(vb.InputError, match="schema_version"):
+        vb.load_report(str(tmp_path / "x.json"))
