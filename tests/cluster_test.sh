@@ -24,7 +24,14 @@ case $mode in
     export SLURM_CONF=$out/cluster/slurm.conf
     timeout 240 "$src/scripts/slurm-sweep" --shards 3 --out "$out/sharded" --wait -- "${args[@]}" >/dev/null
     [ -f "$out/sharded/merged.json" ] || { cat "$out/sharded"/*.log; exit 1; }
-    grep -q -- '--array=1-3' "$out/sharded/shards.sbatch" ;;
+    grep -q -- '--array=1-3' "$out/sharded/shards.sbatch"
+    # A failing shard cancels the merge (afterok) and --wait says so.
+    if timeout 120 "$src/scripts/slurm-sweep" --shards 2 --out "$out/failing" --wait -- \
+        run --dump "$out/no-such-dump" >"$out/failing.log" 2>&1; then
+      echo "a failed shard went unnoticed"; cat "$out/failing.log"; exit 1
+    fi
+    grep -q "merge job .* ended" "$out/failing.log" || { cat "$out/failing.log"; exit 1; }
+    [ ! -f "$out/failing/merged.json" ] ;;
   *) echo "usage: cluster_test.sh parallel|slurm SRC OUT VERIFYBENCH"; exit 2 ;;
 esac
 "$VERIFYBENCH" "${args[@]}" --quiet --out "$out/whole.json" >/dev/null
