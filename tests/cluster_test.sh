@@ -35,6 +35,8 @@ case $mode in
   *) echo "usage: cluster_test.sh parallel|slurm SRC OUT VERIFYBENCH"; exit 2 ;;
 esac
 "$VERIFYBENCH" "${args[@]}" --quiet --out "$out/whole.json" >/dev/null
+# A shard's report and the merged one conform to the report schema.
+$py "$src/reports/check_schema.py" "$out/sharded/shard_1.json" "$out/sharded/merged.json" >/dev/null
 $py - "$out/whole.json" "$out/sharded/merged.json" <<'PY'
 import json, sys
 times = {"time_ms", "graph_ms", "search_ms", "fit_ms", "calibration_ms", "median_time_ms",
