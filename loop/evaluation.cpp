@@ -121,6 +121,10 @@ void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& ma
     const PoseGraphResult plain = optimise_pose_graph(anchors_odo, edges, gp);
     gp.robust = true;
     const PoseGraphResult robust = optimise_pose_graph(anchors_odo, edges, gp);
+    sum.graph_iterations = plain.iterations;
+    sum.graph_iterations_robust = robust.iterations;
+    sum.graph_converged = plain.converged;
+    sum.graph_converged_robust = robust.converged;
     sum.poses_with = scan_poses(plain.poses);
     sum.poses_with_robust = scan_poses(robust.poses);
     sum.ape_with = absolute_pose_error(sum.poses_with, run.truth);

@@ -127,7 +127,11 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
                 {"ape_with_robust_m", s.ape_with_robust.rmse},
                 {"ape_without", ape_json(run.ape_without)},
                 {"ape_with", ape_json(s.ape_with)},
-                {"ape_with_robust", ape_json(s.ape_with_robust)}};
+                {"ape_with_robust", ape_json(s.ape_with_robust)},
+                {"pose_graph", {{"iterations", s.graph_iterations},
+                                {"converged", s.graph_converged},
+                                {"iterations_robust", s.graph_iterations_robust},
+                                {"converged_robust", s.graph_converged_robust}}}};
     row.update(score_json(s.score));
     summary.push_back(row);
     json count = json::array(), alpha = json::array();

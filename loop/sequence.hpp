@@ -112,6 +112,9 @@ struct SolverSummary {
   ApeStats ape_with, ape_with_robust;
   std::vector<Rigid<3>> poses_with, poses_with_robust;  ///< every scan, optimised
   int loop_edges = 0;
+  /// Levenberg-Marquardt iterations of the two pose graphs and whether Ceres reported convergence.
+  int graph_iterations = 0, graph_iterations_robust = 0;
+  bool graph_converged = false, graph_converged_robust = false;
 };
 
 struct LoopRun {

@@ -354,6 +354,11 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   EXPECT_EQ(clique["solver"], "clique");
   EXPECT_GE(clique["tp"].get<int>(), 2) << clique.dump();
   EXPECT_LT(clique["ape_with_robust_m"].get<double>(), clique["ape_without_m"].get<double>());
+  // Both pose graphs ran and Ceres says they converged (a 100-iteration cap is far away here).
+  EXPECT_GE(clique["pose_graph"]["iterations"].get<int>(), 1);
+  EXPECT_GE(clique["pose_graph"]["iterations_robust"].get<int>(), 1);
+  EXPECT_TRUE(clique["pose_graph"]["converged"].get<bool>());
+  EXPECT_TRUE(clique["pose_graph"]["converged_robust"].get<bool>());
   EXPECT_TRUE(fs::exists(dir / "out" / "loop.md"));
   // The plot script draws one trajectory per solver and the precision-recall curves.
   if (fs::exists("/usr/bin/python3")) {
