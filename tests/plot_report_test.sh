@@ -80,4 +80,12 @@ json.dump(d, open(sys.argv[2], 'w'))" "$out/run.json" "$out/broken.json"
 if $py "$src/reports/check_schema.py" "$out/broken.json" >"$out/schema"; then
   echo "a report with status 'fine' passed the schema"; exit 1
 fi
+# The clique table: the dump's 10 rows are one shift, so its clique number is 10, and both exact
+# algorithms prove it.
+"$VERIFYBENCH" run --dump "$out/dump" --solvers clique-bbmc,clique-bbmcx --accept count --quiet \
+  --out "$out/cliques.json" >/dev/null
+$py "$src/reports/clique_table.py" --limit 5 "$out/cliques.json" >"$out/cliques.md"
+grep -Eq '^\| cliques \|  \| 10 \| 10 \| (\*\*)?[0-9.]+(\*\*)? \| (\*\*)?[0-9.]+(\*\*)? \|$' "$out/cliques.md" ||
+  { cat "$out/cliques.md"; exit 1; }
+grep -q '^| \*\*proved\*\* | | | | 1 of 1 | 1 of 1 |' "$out/cliques.md" || { cat "$out/cliques.md"; exit 1; }
 echo "plot_report: ok"
