@@ -128,20 +128,7 @@ Measured clique_on(vb::BitGraph graph, const std::string& algorithm) {
 /// retrieval, verification, pose graphs, APE) on a small excerpt.
 vb::LoopConfig loop_excerpt() {
   vb::LoopConfig c;
-  const double W = 100, H = 60;
-  for (int lap = 0; lap < 2; ++lap) {
-    for (double s = 0; s < 2 * (W + H); s += 1.0) {
-      double x, y, yaw;
-      if (s < W) x = s, y = 0, yaw = 0;
-      else if (s < W + H) x = W, y = s - W, yaw = M_PI / 2;
-      else if (s < 2 * W + H) x = W - (s - W - H), y = H, yaw = M_PI;
-      else x = 0, y = H - (s - 2 * W - H), yaw = -M_PI / 2;
-      vb::Rigid<3> T = vb::Rigid<3>::Identity();
-      T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      T.translation() << x, y, 0;
-      c.truth.push_back(T);
-    }
-  }
+  c.truth = vb::block_laps(100, 60, 2);
   c.lidar.beams = 32;
   c.lidar.columns = 256;
   c.scan_spacing = 10.0;

@@ -290,4 +290,23 @@ World build_street_world(const std::vector<Rigid<3>>& path, const WorldParams& p
   return world;
 }
 
+std::vector<Rigid<3>> block_laps(double width, double height, int laps, double step) {
+  const double W = width, H = height;
+  std::vector<Rigid<3>> path;
+  for (int lap = 0; lap < laps; ++lap) {
+    for (double s = 0; s < 2 * (W + H); s += step) {
+      double x, y, yaw;
+      if (s < W) x = s, y = 0, yaw = 0;
+      else if (s < W + H) x = W, y = s - W, yaw = M_PI / 2;
+      else if (s < 2 * W + H) x = W - (s - W - H), y = H, yaw = M_PI;
+      else x = 0, y = H - (s - 2 * W - H), yaw = -M_PI / 2;
+      Rigid<3> T = Rigid<3>::Identity();
+      T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      T.translation() << x, y, 0.0;
+      path.push_back(T);
+    }
+  }
+  return path;
+}
+
 }  // namespace verifybench

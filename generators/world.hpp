@@ -57,4 +57,9 @@ struct World {
 /// or a ground grid beyond 4096 cells a side.
 World build_street_world(const std::vector<Rigid<3>>& path, const WorldParams& params);
 
+/// A drawn drive around a `width` x `height` rectangular block, `laps` times, counter-clockwise from
+/// the origin along +x, one pose every `step` metres (heading along the side, z = 0): every lap
+/// after the first revisits the first, a loop-closure test without a recorded trajectory.
+std::vector<Rigid<3>> block_laps(double width, double height, int laps, double step = 1.0);
+
 }  // namespace verifybench

@@ -315,18 +315,7 @@ TEST(Sequence, SelectFramesAndLiftPlanar) {
 // must find true closures, and its loops must cut the trajectory error.
 TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
-  std::vector<vb::Rigid<3>> path;
-  const double W = 220, H = 140;
-  for (int lap = 0; lap < 2; ++lap) {
-    for (double s = 0; s < 2 * (W + H); s += 1.0) {
-      double x, y, yaw;
-      if (s < W) x = s, y = 0, yaw = 0;
-      else if (s < W + H) x = W, y = s - W, yaw = M_PI / 2;
-      else if (s < 2 * W + H) x = W - (s - W - H), y = H, yaw = M_PI;
-      else x = 0, y = H - (s - 2 * W - H), yaw = -M_PI / 2;
-      path.push_back(pose(x, y, yaw));
-    }
-  }
+  const std::vector<vb::Rigid<3>> path = vb::block_laps(220, 140, 2);
   const fs::path dir = fs::temp_directory_path() / "vb_loop_cli";
   fs::remove_all(dir);
   fs::create_directories(dir);

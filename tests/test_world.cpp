@@ -196,3 +196,22 @@ TEST(Trajectory, BadFilesNameFileLineAndField) {
   EXPECT_THROW(vb::read_kitti_calib_tr((dir / "c.txt").string()), vb::InputError);
   EXPECT_THROW(vb::read_kitti_poses((dir / "missing.txt").string()), vb::InputError);
 }
+
+// The drawn block drive: one pose a metre around the rectangle, each lap the same poses.
+TEST(World, BlockLapsGoRoundTheRectangleAndRepeat) {
+  const auto path = vb::block_laps(30, 20, 2);
+  ASSERT_EQ(path.size(), 2u * 100u);  // 2 (30 + 20) m a lap
+  auto at = [&](std::size_t k, double x, double y, double yaw) {
+    EXPECT_NEAR(path[k].translation().x(), x, 1e-12) << k;
+    EXPECT_NEAR(path[k].translation().y(), y, 1e-12) << k;
+    EXPECT_NEAR(path[k].translation().z(), 0.0, 1e-12) << k;
+    const Eigen::Vector3d heading = path[k].linear().col(0);
+    EXPECT_NEAR(heading.x(), std::cos(yaw), 1e-12) << k;
+    EXPECT_NEAR(heading.y(), std::sin(yaw), 1e-12) << k;
+  };
+  at(0, 0, 0, 0);
+  at(35, 30, 5, M_PI / 2);
+  at(60, 20, 20, M_PI);
+  at(95, 0, 5, -M_PI / 2);
+  for (std::size_t k = 0; k < 100; ++k) EXPECT_TRUE(path[k].isApprox(path[k + 100], 1e-12)) << k;
+}
