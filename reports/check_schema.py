@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Checks verifybench reports against reports/schema/report.schema.json (python3-jsonschema).
+"""Checks verifybench reports against reports/schema/report.schema.json, or loop.schema.json for a
+`verifybench loop` report (kind "loop") (python3-jsonschema).
 
 Prints one line per report: "REPORT: ok", or the first violation with its JSON path; exits 1 when
 any report does not conform, 2 when a file cannot be read.
@@ -12,14 +13,19 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import report_io  # noqa: E402
 
 TOOL = "check_schema"
-SCHEMA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "schema", "report.schema.json")
+SCHEMAS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "schema")
+
+
+def schema_for(doc):
+    """loop.schema.json for a `verifybench loop` report (kind "loop"), else report.schema.json."""
+    name = "loop.schema.json" if isinstance(doc, dict) and doc.get("kind") == "loop" else "report.schema.json"
+    return os.path.join(SCHEMAS, name)
 
 
 def main(argv):
     args = report_io.parser(TOOL, __doc__).parse_args(argv)
     import jsonschema
-    with open(SCHEMA) as f:
-        validator = jsonschema.Draft202012Validator(json.load(f))
+    validators = {}
     bad = 0
     for path in args.reports:
         try:
@@ -27,7 +33,11 @@ def main(argv):
                 doc = json.load(f)
         except (OSError, json.JSONDecodeError) as e:
             report_io.fail(TOOL, f"{path}: {e}")
-        error = jsonschema.exceptions.best_match(validator.iter_errors(doc))
+        schema = schema_for(doc)
+        if schema not in validators:
+            with open(schema) as f:
+                validators[schema] = jsonschema.Draft202012Validator(json.load(f))
+        error = jsonschema.exceptions.best_match(validators[schema].iter_errors(doc))
         if error is None:
             print(f"{path}: ok")
         else:

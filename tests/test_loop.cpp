@@ -357,6 +357,15 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
     for (const char* png : {"loop_trajectory_clique.png", "loop_trajectory_ransac.png", "loop_pr.png"}) {
       EXPECT_GT(fs::file_size(dir / "out" / png), 10000u) << png;
     }
+    // loop.json conforms to reports/schema/loop.schema.json, and a closure row with an unknown
+    // status does not.
+    const std::string check = "/usr/bin/python3 " + std::string(VERIFYBENCH_SOURCE_DIR) +
+                              "/reports/check_schema.py ";
+    EXPECT_EQ(std::system((check + (dir / "out" / "loop.json").string() + " >/dev/null").c_str()), 0);
+    nlohmann::json broken = j;
+    broken["closures"][0]["status"] = "fine";
+    std::ofstream((dir / "broken.json").string()) << broken.dump();
+    EXPECT_NE(std::system((check + (dir / "broken.json").string() + " >/dev/null").c_str()), 0);
   }
 }
 
