@@ -41,6 +41,7 @@
 #include "generators/synthetic.hpp"
 #include "graph/compatibility_graph.hpp"
 #include "harness/builtin.hpp"
+#include "harness/harness.hpp"
 #include "solvers/registry.hpp"
 #ifdef VERIFYBENCH_PERF_FRONTEND
 #include "frontend/hbst.hpp"
@@ -171,6 +172,19 @@ std::vector<Workload> workloads() {
   w.push_back({"dimacs_brock200_1", "default clique algorithm on DIMACS brock200_1",
                [] { return need_dir(kData + "/dimacs/brock200_1.clq"); },
                [] { return clique_on(vb::read_dimacs(kData + "/dimacs/brock200_1.clq"), "auto"); }});
+  w.push_back({"calibrated_clique_n1000",
+               "default clique solver under the calibrated rule (solve + permutation null), n = 1000, 99% outliers",
+               [] { return std::string(); }, [] {
+                 vb::register_builtin_solvers();
+                 vb::SolverParams p = one_thread(0.1);
+                 p.accept.rule = vb::AcceptParams::Rule::pvalue;
+                 auto solver = std::shared_ptr<vb::Solver>(vb::SolverRegistry::create("clique"));
+                 return Measured([solver, p, set = synthetic<3>(1000, 0.99, 0.01, 1)] {
+                   const auto r = vb::evaluate<3>(*solver, "clique", set, p, vb::SuccessCriteria{});
+                   return "inliers=" + std::to_string(r.inliers) + ",null_draws=" +
+                          std::to_string(r.null_draws) + ",accepted=" + std::to_string(r.accepted);
+                 });
+               }});
   w.push_back({"ransac_10k_n1000", "RANSAC, the paper's fixed 10,000 hypotheses, n = 1000, 90% outliers",
                [] { return std::string(); },
                [] { return solve<3>("ransac", synthetic<3>(1000, 0.9, 0.01, 1), one_thread(0.1)); }});
