@@ -245,7 +245,7 @@ def main():
     for name, message in sorted(errors.items()):
         print(f"perf-gate: workload {name} failed: {message}", file=sys.stderr)
 
-    rows, worst = [], "ok"
+    worst = "ok"
     print(f"{'workload':32} {'baseline':>15} {'now':>15} {'change':>9}  status")
     for name in wanted:
         r = results.get(name, {})
@@ -268,7 +268,6 @@ def main():
                 note = f"; result changed: {entry['check']} -> {r['check']}"
             line = (f"{name:32} {entry['instructions']:>15} {r['instructions']:>15} "
                     f"{change:>+8.2f}%  {status}{note}")
-        rows.append(line)
         print(line)
     for name in sorted(set(base) - set(known)):
         print(f"perf-gate: warning: baseline workload '{name}' is not in {args.binary} (removed?)",
