@@ -37,6 +37,12 @@ CoverSearch::CoverSearch(const BitGraph& g, int incumbent, SearchBudget& budget)
       z_r_(static_cast<std::size_t>(n_), 0),
       seen_(static_cast<std::size_t>(n_), 0) {
   const int W = g.words();
+  // H's lists are sized first (a vertex's degree in H is n - 1 - its degree in g), so that they
+  // are written once: grown by push_back, their copies and page faults were a third of a search
+  // that hands thousands of near-clique nodes over (BENCHMARK.md section 19).
+  std::size_t total = 0;
+  for (int v = 0; v < n_; ++v) total += static_cast<std::size_t>(n_ - 1 - g.degree(v));
+  nbr_.reserve(total);
   for (int v = 0; v < n_; ++v) {
     const Word* row = g.row(v);
     for (int w = 0; w < W; ++w) {
