@@ -9,6 +9,7 @@
 #include "cliques/detail/bbmc.hpp"
 #include "cliques/max_clique.hpp"
 #include "graph/compatibility_graph.hpp"
+#include "graph/planted.hpp"
 #include "test_util.hpp"
 
 namespace verifybench {
@@ -125,59 +126,11 @@ TEST_P(Exact, PassedDeadlineStopsBeforeTheSearch) {
   EXPECT_TRUE(g.is_clique(r.clique));
 }
 
-// A planted near-clique whose clique number is known without any clique search: K's complement
-// is a disjoint union of random blocks of at most 24 vertices, so omega(K) is the sum of the
-// blocks' independence numbers (each by brute force); outliers see at most omega / 2 vertices, so
-// no clique through one comes near omega. Vertex ids are shuffled.
-struct NearClique {
-  BitGraph g;
-  int omega = 0;
-  double removed = 0;  // share of K's pairs that are not edges
-};
-
-NearClique near_clique(int k, int outliers, int block, double block_density, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  const int n = k + outliers;
-  std::vector<int> id(static_cast<std::size_t>(n));
-  std::iota(id.begin(), id.end(), 0);
-  std::shuffle(id.begin(), id.end(), rng);
-  NearClique nc{BitGraph(n)};
-  long long missing = 0;
-  std::bernoulli_distribution cut(block_density);
-  for (int first = 0; first < k; first += block) {
-    const int size = std::min(block, k - first);
-    BitGraph complement_block(size);  // its cliques are the block's independent sets in K
-    for (int a = 0; a < size; ++a) {
-      for (int b = a + 1; b < size; ++b) {
-        if (cut(rng)) {
-          ++missing;
-        } else {
-          complement_block.add_edge(a, b);
-        }
-      }
-    }
-    for (int a = 0; a < size; ++a) {
-      for (int b = a + 1; b < size; ++b) {
-        if (complement_block.adjacent(a, b)) nc.g.add_edge(id[first + a], id[first + b]);
-      }
-    }
-    nc.omega += test::brute_force_clique_number(complement_block);
-    for (int a = 0; a < size; ++a) {  // every pair across blocks is an edge
-      for (int b = first + size; b < k; ++b) nc.g.add_edge(id[first + a], id[b]);
-    }
-  }
-  nc.removed = static_cast<double>(missing) / (0.5 * k * (k - 1.0));
-  std::uniform_int_distribution<int> any(0, n - 1);
-  for (int o = k; o < n; ++o) {
-    for (int e = 0; e < nc.omega / 2 - 1; ++e) nc.g.add_edge(id[o], id[any(rng)]);
-  }
-  return nc;
-}
-
 TEST_P(Exact, SmallNearCliquesMatchTheirBlockOracle) {
   // 40-70 vertices: the cover search (reductions, LP bound, packing) and the hand-off run here.
   for (int rep = 0; rep < 6; ++rep) {
-    const NearClique nc = near_clique(40 + 5 * rep, 10 + rep, 8 + 3 * rep, 0.1 + 0.12 * rep, rep);
+    const PlantedGraph nc =
+        block_near_clique(40 + 5 * rep, 10 + rep, 8 + 3 * rep, 0.1 + 0.12 * rep, rep);
     const CliqueSearchResult r = solve(GetParam(), nc.g);
     ASSERT_TRUE(nc.g.is_clique(r.clique)) << rep;
     EXPECT_EQ(static_cast<int>(r.clique.size()), nc.omega) << rep;
@@ -275,7 +228,7 @@ TEST(MaxClique, LargeNearCliquesAreProvedByTheCoverSearch) {
     double density;
   };
   for (const Case c : {Case{500, 500, 0.1}, Case{1000, 1000, 0.1}, Case{3000, 1500, 0.1}}) {
-    const NearClique nc = near_clique(c.k, c.outliers, 24, c.density, 7 + c.k);
+    const PlantedGraph nc = block_near_clique(c.k, c.outliers, 24, c.density, 7 + c.k);
     EXPECT_GT(nc.removed, 0.0) << c.k;
     EXPECT_GE(nc.omega, c.k / 2) << c.k;
     for (const char* algorithm : {"cover", "auto", kDefaultCliqueAlgorithm}) {
@@ -290,107 +243,6 @@ TEST(MaxClique, LargeNearCliquesAreProvedByTheCoverSearch) {
   }
 }
 
-// A near-clique with 1-5% of its pairs removed, most of them at a few dozen noisy vertices (hubs),
-// as in a correspondence graph where matches with large errors break many constraints and the rest
-// break a few. K = hubs S + blocks of at most 12 vertices; a pair of K is a non-edge only between
-// two hubs, a hub and any other vertex, or two vertices of one block. A clique of K is a set I of
-// hubs that is a clique, plus in every block an independent set of the block's complement among
-// the vertices every hub of I sees, so
-//   omega(K) = max over cliques I of S of  |I| + sum_b alpha_b(B_b minus the non-neighbours of I)
-// with alpha_b tabulated over all 2^12 subsets of a block by alpha(X) = max(alpha(X - v),
-// 1 + alpha(X - v - N(v))). Half the hubs break 20-60% of their pairs, half 0.1-5% (log-uniform),
-// so that some belong to the optimum and some do not. Outliers see fewer than omega / 2 vertices.
-NearClique hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) {
-  constexpr int kBlock = 12;
-  std::mt19937_64 rng(seed);
-  const int n = k + outliers;
-  std::vector<int> id(static_cast<std::size_t>(n));
-  std::iota(id.begin(), id.end(), 0);
-  std::shuffle(id.begin(), id.end(), rng);
-  NearClique nc{BitGraph(n)};
-  BitGraph cut(k);  // K's non-edges (ids 0..k-1: the hubs first, then the blocks in turn)
-  auto remove = [&](int a, int b) {
-    if (!cut.adjacent(a, b)) cut.add_edge(a, b);
-  };
-  std::uniform_real_distribution<double> heavy(0.2, 0.6),
-      log_light(std::log(0.001), std::log(0.05));
-  std::bernoulli_distribution hub_pair(0.5), block_pair(0.2);
-  for (int h = 0; h < hubs; ++h) {
-    std::bernoulli_distribution breaks(h % 2 == 0 ? heavy(rng) : std::exp(log_light(rng)));
-    for (int v = 0; v < k; ++v) {
-      if (v == h) continue;
-      if (v < hubs ? hub_pair(rng) : breaks(rng)) remove(h, v);
-    }
-  }
-  const int blocks = (k - hubs + kBlock - 1) / kBlock;
-  std::vector<std::vector<int>> alpha(static_cast<std::size_t>(blocks));
-  for (int b = 0; b < blocks; ++b) {
-    const int first = hubs + b * kBlock, size = std::min(kBlock, k - first);
-    std::vector<unsigned> closed(static_cast<std::size_t>(size));  // v and its non-neighbours
-    for (int a = 0; a < size; ++a) closed[static_cast<std::size_t>(a)] |= 1u << a;
-    for (int a = 0; a < size; ++a) {
-      for (int c = a + 1; c < size; ++c) {
-        if (!block_pair(rng)) continue;
-        remove(first + a, first + c);
-        closed[static_cast<std::size_t>(a)] |= 1u << c;
-        closed[static_cast<std::size_t>(c)] |= 1u << a;
-      }
-    }
-    auto& table = alpha[static_cast<std::size_t>(b)];
-    table.assign(std::size_t{1} << size, 0);
-    for (unsigned X = 1; X < table.size(); ++X) {
-      const int v = __builtin_ctz(X);
-      table[X] =
-          std::max(table[X & ~(1u << v)], 1 + table[X & ~closed[static_cast<std::size_t>(v)]]);
-    }
-  }
-  // Every clique I of the hubs (by increasing id), with the block vertices all of I see.
-  std::vector<std::vector<unsigned>> hub_cuts(static_cast<std::size_t>(hubs),
-                                              std::vector<unsigned>(std::size_t(blocks), 0));
-  for (int h = 0; h < hubs; ++h)
-    for (int v = hubs; v < k; ++v)
-      if (cut.adjacent(h, v))
-        hub_cuts[std::size_t(h)][std::size_t((v - hubs) / kBlock)] |= 1u << ((v - hubs) % kBlock);
-  std::vector<unsigned> seen(static_cast<std::size_t>(blocks));
-  for (int b = 0; b < blocks; ++b)
-    seen[std::size_t(b)] = static_cast<unsigned>(alpha[std::size_t(b)].size() - 1);
-  std::vector<int> chosen;
-  auto visit = [&](auto&& self, int next) -> void {
-    int total = static_cast<int>(chosen.size());
-    for (int b = 0; b < blocks; ++b) total += alpha[std::size_t(b)][seen[std::size_t(b)]];
-    nc.omega = std::max(nc.omega, total);
-    for (int h = next; h < hubs; ++h) {
-      bool fits = true;
-      for (int c : chosen) fits = fits && !cut.adjacent(c, h);
-      if (!fits) continue;
-      const std::vector<unsigned> before = seen;
-      for (int b = 0; b < blocks; ++b)
-        seen[std::size_t(b)] &= ~hub_cuts[std::size_t(h)][std::size_t(b)];
-      chosen.push_back(h);
-      self(self, h + 1);
-      chosen.pop_back();
-      seen = before;
-    }
-  };
-  visit(visit, 0);
-  long long missing = 0;
-  for (int a = 0; a < k; ++a) {
-    for (int b = a + 1; b < k; ++b) {
-      if (cut.adjacent(a, b)) {
-        ++missing;
-      } else {
-        nc.g.add_edge(id[std::size_t(a)], id[std::size_t(b)]);
-      }
-    }
-  }
-  nc.removed = static_cast<double>(missing) / (0.5 * k * (k - 1.0));
-  std::uniform_int_distribution<int> any(0, n - 1);
-  for (int o = k; o < n; ++o)
-    for (int e = 0; e < nc.omega / 2 - 1; ++e)
-      nc.g.add_edge(id[std::size_t(o)], id[std::size_t(any(rng))]);
-  return nc;
-}
-
 TEST(MaxClique, NearCliquesWithOneToFivePercentRemovedMatchTheirHubOracle) {
   // Issue #12, item 7: cliques of 500-3000 with 1-5% of their pairs removed, plus outliers.
   register_clique_algorithms();
@@ -400,7 +252,7 @@ TEST(MaxClique, NearCliquesWithOneToFivePercentRemovedMatchTheirHubOracle) {
   };
   for (const Case c : {Case{500, 50, 500, 0.03, 0.05}, Case{1000, 70, 1000, 0.02, 0.04},
                        Case{3000, 70, 1500, 0.008, 0.015}}) {
-    const NearClique nc = hub_near_clique(c.k, c.hubs, c.outliers, 12 + c.k);
+    const PlantedGraph nc = hub_near_clique(c.k, c.hubs, c.outliers, 12 + c.k);
     EXPECT_GE(nc.removed, c.min_removed) << c.k;
     EXPECT_LE(nc.removed, c.max_removed) << c.k;
     EXPECT_GE(nc.omega, 2 * c.k / 5) << c.k;

@@ -1,0 +1,170 @@
+// The planted near-cliques of graph/planted.hpp.
+#include "graph/planted.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+namespace verifybench {
+
+namespace {
+
+/// Clique number by include/exclude recursion with the trivial size bound (blocks of <= 24).
+int clique_number(const BitGraph& g) {
+  int best = 0;
+  std::vector<int> chosen;
+  auto rec = [&](auto&& self, int v) -> void {
+    if (static_cast<int>(chosen.size()) + (g.size() - v) <= best) return;
+    if (v == g.size()) {
+      best = static_cast<int>(chosen.size());
+      return;
+    }
+    bool fits = true;
+    for (int u : chosen) fits = fits && g.adjacent(u, v);
+    if (fits) {
+      chosen.push_back(v);
+      self(self, v + 1);
+      chosen.pop_back();
+    }
+    self(self, v + 1);
+  };
+  rec(rec, 0);
+  return best;
+}
+
+}  // namespace
+
+PlantedGraph block_near_clique(int k, int outliers, int block, double block_density,
+                               std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  const int n = k + outliers;
+  std::vector<int> id(static_cast<std::size_t>(n));
+  std::iota(id.begin(), id.end(), 0);
+  std::shuffle(id.begin(), id.end(), rng);
+  PlantedGraph nc{BitGraph(n)};
+  long long missing = 0;
+  std::bernoulli_distribution cut(block_density);
+  for (int first = 0; first < k; first += block) {
+    const int size = std::min(block, k - first);
+    BitGraph complement_block(size);  // its cliques are the block's independent sets in K
+    for (int a = 0; a < size; ++a) {
+      for (int b = a + 1; b < size; ++b) {
+        if (cut(rng)) {
+          ++missing;
+        } else {
+          complement_block.add_edge(a, b);
+        }
+      }
+    }
+    for (int a = 0; a < size; ++a) {
+      for (int b = a + 1; b < size; ++b) {
+        if (complement_block.adjacent(a, b)) nc.g.add_edge(id[first + a], id[first + b]);
+      }
+    }
+    nc.omega += clique_number(complement_block);
+    for (int a = 0; a < size; ++a) {  // every pair across blocks is an edge
+      for (int b = first + size; b < k; ++b) nc.g.add_edge(id[first + a], id[b]);
+    }
+  }
+  nc.removed = static_cast<double>(missing) / (0.5 * k * (k - 1.0));
+  std::uniform_int_distribution<int> any(0, n - 1);
+  for (int o = k; o < n; ++o) {
+    for (int e = 0; e < nc.omega / 2 - 1; ++e) nc.g.add_edge(id[o], id[any(rng)]);
+  }
+  return nc;
+}
+
+PlantedGraph hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) {
+  constexpr int kBlock = 12;
+  std::mt19937_64 rng(seed);
+  const int n = k + outliers;
+  std::vector<int> id(static_cast<std::size_t>(n));
+  std::iota(id.begin(), id.end(), 0);
+  std::shuffle(id.begin(), id.end(), rng);
+  PlantedGraph nc{BitGraph(n)};
+  BitGraph cut(k);  // K's non-edges (ids 0..k-1: the hubs first, then the blocks in turn)
+  auto remove = [&](int a, int b) {
+    if (!cut.adjacent(a, b)) cut.add_edge(a, b);
+  };
+  std::uniform_real_distribution<double> heavy(0.2, 0.6),
+      log_light(std::log(0.001), std::log(0.05));
+  std::bernoulli_distribution hub_pair(0.5), block_pair(0.2);
+  for (int h = 0; h < hubs; ++h) {
+    std::bernoulli_distribution breaks(h % 2 == 0 ? heavy(rng) : std::exp(log_light(rng)));
+    for (int v = 0; v < k; ++v) {
+      if (v == h) continue;
+      if (v < hubs ? hub_pair(rng) : breaks(rng)) remove(h, v);
+    }
+  }
+  const int blocks = (k - hubs + kBlock - 1) / kBlock;
+  std::vector<std::vector<int>> alpha(static_cast<std::size_t>(blocks));
+  for (int b = 0; b < blocks; ++b) {
+    const int first = hubs + b * kBlock, size = std::min(kBlock, k - first);
+    std::vector<unsigned> closed(static_cast<std::size_t>(size));  // v and its non-neighbours
+    for (int a = 0; a < size; ++a) closed[static_cast<std::size_t>(a)] |= 1u << a;
+    for (int a = 0; a < size; ++a) {
+      for (int c = a + 1; c < size; ++c) {
+        if (!block_pair(rng)) continue;
+        remove(first + a, first + c);
+        closed[static_cast<std::size_t>(a)] |= 1u << c;
+        closed[static_cast<std::size_t>(c)] |= 1u << a;
+      }
+    }
+    auto& table = alpha[static_cast<std::size_t>(b)];
+    table.assign(std::size_t{1} << size, 0);
+    for (unsigned X = 1; X < table.size(); ++X) {
+      const int v = __builtin_ctz(X);
+      table[X] =
+          std::max(table[X & ~(1u << v)], 1 + table[X & ~closed[static_cast<std::size_t>(v)]]);
+    }
+  }
+  // Every clique I of the hubs (by increasing id), with the block vertices all of I see.
+  std::vector<std::vector<unsigned>> hub_cuts(static_cast<std::size_t>(hubs),
+                                              std::vector<unsigned>(std::size_t(blocks), 0));
+  for (int h = 0; h < hubs; ++h)
+    for (int v = hubs; v < k; ++v)
+      if (cut.adjacent(h, v))
+        hub_cuts[std::size_t(h)][std::size_t((v - hubs) / kBlock)] |= 1u << ((v - hubs) % kBlock);
+  std::vector<unsigned> seen(static_cast<std::size_t>(blocks));
+  for (int b = 0; b < blocks; ++b)
+    seen[std::size_t(b)] = static_cast<unsigned>(alpha[std::size_t(b)].size() - 1);
+  std::vector<int> chosen;
+  auto visit = [&](auto&& self, int next) -> void {
+    int total = static_cast<int>(chosen.size());
+    for (int b = 0; b < blocks; ++b) total += alpha[std::size_t(b)][seen[std::size_t(b)]];
+    nc.omega = std::max(nc.omega, total);
+    for (int h = next; h < hubs; ++h) {
+      bool fits = true;
+      for (int c : chosen) fits = fits && !cut.adjacent(c, h);
+      if (!fits) continue;
+      const std::vector<unsigned> before = seen;
+      for (int b = 0; b < blocks; ++b)
+        seen[std::size_t(b)] &= ~hub_cuts[std::size_t(h)][std::size_t(b)];
+      chosen.push_back(h);
+      self(self, h + 1);
+      chosen.pop_back();
+      seen = before;
+    }
+  };
+  visit(visit, 0);
+  long long missing = 0;
+  for (int a = 0; a < k; ++a) {
+    for (int b = a + 1; b < k; ++b) {
+      if (cut.adjacent(a, b)) {
+        ++missing;
+      } else {
+        nc.g.add_edge(id[std::size_t(a)], id[std::size_t(b)]);
+      }
+    }
+  }
+  nc.removed = static_cast<double>(missing) / (0.5 * k * (k - 1.0));
+  std::uniform_int_distribution<int> any(0, n - 1);
+  for (int o = k; o < n; ++o)
+    for (int e = 0; e < nc.omega / 2 - 1; ++e)
+      nc.g.add_edge(id[std::size_t(o)], id[std::size_t(any(rng))]);
+  return nc;
+}
+
+}  // namespace verifybench
