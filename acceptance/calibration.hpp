@@ -45,7 +45,7 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                        const Calibration& calibration, const SolverParams& params);
 
 /// Draws before an early accept.
-inline constexpr int kMinDrawsToAccept = 5;
+inline constexpr int kMinDrawsToAccept = 3;
 
 inline constexpr std::uint64_t kNullStream = 0x6e756c6cull;  // "null"
 

@@ -156,6 +156,9 @@ TEST(Calibration, EarlyStopsGiveTheDecisionOfAllDraws) {
     EXPECT_TRUE(std::equal(c.null.scores.begin(), c.null.scores.end(), all.begin()));
     early += c.null.draws < params.accept.null_draws;
     accepted += c.p_value < params.accept.alpha;
+    if (c.p_value < params.accept.alpha && c.null.draws < params.accept.null_draws) {
+      EXPECT_GE(c.null.draws, kMinDrawsToAccept) << "seed " << seed;  // no accept before it
+    }
   }
   EXPECT_GE(early, 6);  // many pairs are decided before the last draw
   EXPECT_GT(accepted, 0);
