@@ -11,27 +11,39 @@ namespace verifybench {
 
 namespace {
 
-/// Clique number by include/exclude recursion with the trivial size bound (blocks of <= 24).
-int clique_number(const BitGraph& g) {
-  int best = 0;
-  std::vector<int> chosen;
-  auto rec = [&](auto&& self, int v) -> void {
-    if (static_cast<int>(chosen.size()) + (g.size() - v) <= best) return;
-    if (v == g.size()) {
-      best = static_cast<int>(chosen.size());
-      return;
+/// The independence number of the vertices in `mask` (<= 32), given each vertex's closed
+/// neighbourhood: a vertex with at most one neighbour left joins the set, else the lowest one is
+/// branched on (in the set, or not).
+int independence_number(const std::vector<std::uint32_t>& closed, std::uint32_t mask) {
+  if (mask == 0) return 0;
+  for (std::uint32_t m = mask; m; m &= m - 1) {
+    const int v = __builtin_ctz(m);
+    if (__builtin_popcount(closed[std::size_t(v)] & mask) <= 2) {
+      return 1 + independence_number(closed, mask & ~closed[std::size_t(v)]);
     }
-    bool fits = true;
-    for (int u : chosen) fits = fits && g.adjacent(u, v);
-    if (fits) {
-      chosen.push_back(v);
-      self(self, v + 1);
-      chosen.pop_back();
+  }
+  const int v = __builtin_ctz(mask);
+  return std::max(independence_number(closed, mask & ~(1u << v)),
+                  1 + independence_number(closed, mask & ~closed[std::size_t(v)]));
+}
+
+/// A random order of the n vertex ids (K first, then the outliers, in shuffled ids).
+std::vector<int> shuffled_ids(int n, std::mt19937_64& rng) {
+  std::vector<int> id(static_cast<std::size_t>(n));
+  std::iota(id.begin(), id.end(), 0);
+  std::shuffle(id.begin(), id.end(), rng);
+  return id;
+}
+
+/// Each outlier (positions k.. of `id`) sees fewer than omega / 2 random vertices.
+void add_outliers(PlantedGraph& nc, int k, const std::vector<int>& id, std::mt19937_64& rng) {
+  const int n = static_cast<int>(id.size());
+  std::uniform_int_distribution<int> any(0, n - 1);
+  for (int o = k; o < n; ++o) {
+    for (int e = 0; e < nc.omega / 2 - 1; ++e) {
+      nc.g.add_edge(id[std::size_t(o)], id[std::size_t(any(rng))]);
     }
-    self(self, v + 1);
-  };
-  rec(rec, 0);
-  return best;
+  }
 }
 
 }  // namespace
@@ -39,51 +51,41 @@ int clique_number(const BitGraph& g) {
 PlantedGraph block_near_clique(int k, int outliers, int block, double block_density,
                                std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  const int n = k + outliers;
-  std::vector<int> id(static_cast<std::size_t>(n));
-  std::iota(id.begin(), id.end(), 0);
-  std::shuffle(id.begin(), id.end(), rng);
-  PlantedGraph nc{BitGraph(n)};
+  const std::vector<int> id = shuffled_ids(k + outliers, rng);
+  PlantedGraph nc{BitGraph(k + outliers)};
   long long missing = 0;
   std::bernoulli_distribution cut(block_density);
   for (int first = 0; first < k; first += block) {
     const int size = std::min(block, k - first);
-    BitGraph complement_block(size);  // its cliques are the block's independent sets in K
+    std::vector<std::uint32_t> closed(static_cast<std::size_t>(size));  // v and its non-neighbours
+    for (int a = 0; a < size; ++a) closed[std::size_t(a)] |= 1u << a;
     for (int a = 0; a < size; ++a) {
       for (int b = a + 1; b < size; ++b) {
         if (cut(rng)) {
           ++missing;
+          closed[std::size_t(a)] |= 1u << b;
+          closed[std::size_t(b)] |= 1u << a;
         } else {
-          complement_block.add_edge(a, b);
+          nc.g.add_edge(id[std::size_t(first + a)], id[std::size_t(first + b)]);
         }
       }
     }
-    for (int a = 0; a < size; ++a) {
-      for (int b = a + 1; b < size; ++b) {
-        if (complement_block.adjacent(a, b)) nc.g.add_edge(id[first + a], id[first + b]);
-      }
-    }
-    nc.omega += clique_number(complement_block);
+    nc.omega += independence_number(closed, size == 32 ? ~0u : (1u << size) - 1);
     for (int a = 0; a < size; ++a) {  // every pair across blocks is an edge
-      for (int b = first + size; b < k; ++b) nc.g.add_edge(id[first + a], id[b]);
+      for (int b = first + size; b < k; ++b)
+        nc.g.add_edge(id[std::size_t(first + a)], id[std::size_t(b)]);
     }
   }
   nc.removed = static_cast<double>(missing) / (0.5 * k * (k - 1.0));
-  std::uniform_int_distribution<int> any(0, n - 1);
-  for (int o = k; o < n; ++o) {
-    for (int e = 0; e < nc.omega / 2 - 1; ++e) nc.g.add_edge(id[o], id[any(rng)]);
-  }
+  add_outliers(nc, k, id, rng);
   return nc;
 }
 
 PlantedGraph hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) {
   constexpr int kBlock = 12;
   std::mt19937_64 rng(seed);
-  const int n = k + outliers;
-  std::vector<int> id(static_cast<std::size_t>(n));
-  std::iota(id.begin(), id.end(), 0);
-  std::shuffle(id.begin(), id.end(), rng);
-  PlantedGraph nc{BitGraph(n)};
+  const std::vector<int> id = shuffled_ids(k + outliers, rng);
+  PlantedGraph nc{BitGraph(k + outliers)};
   BitGraph cut(k);  // K's non-edges (ids 0..k-1: the hubs first, then the blocks in turn)
   auto remove = [&](int a, int b) {
     if (!cut.adjacent(a, b)) cut.add_edge(a, b);
@@ -160,10 +162,7 @@ PlantedGraph hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) 
     }
   }
   nc.removed = static_cast<double>(missing) / (0.5 * k * (k - 1.0));
-  std::uniform_int_distribution<int> any(0, n - 1);
-  for (int o = k; o < n; ++o)
-    for (int e = 0; e < nc.omega / 2 - 1; ++e)
-      nc.g.add_edge(id[std::size_t(o)], id[std::size_t(any(rng))]);
+  add_outliers(nc, k, id, rng);
   return nc;
 }
 

@@ -218,6 +218,17 @@ TEST(MaxClique, LargePlantedCliqueIsProvedOptimal) {
   }
 }
 
+/// `algorithm` returns a maximum clique of the planted graph, proved, with the bound at omega.
+void expect_proves(const std::string& algorithm, const PlantedGraph& nc, int k) {
+  CliqueSearchParams p;
+  p.time_limit_s = 120;  // a safety net against a hang, not a timing assertion
+  const auto r = CliqueAlgorithms::get(algorithm).run(nc.g, p);
+  EXPECT_TRUE(nc.g.is_clique(r.clique)) << algorithm << " k=" << k;
+  EXPECT_EQ(static_cast<int>(r.clique.size()), nc.omega) << algorithm << " k=" << k;
+  EXPECT_TRUE(r.optimal) << algorithm << " k=" << k;
+  EXPECT_EQ(r.upper_bound, nc.omega) << algorithm << " k=" << k;
+}
+
 TEST(MaxClique, LargeNearCliquesAreProvedByTheCoverSearch) {
   // Cliques of 500-3000 with edges removed in blocks (0.5% at 500, 0.2% at 1000, 0.08% at 3000:
   // blocks of 24 cap the share), plus outliers: omega is 60-80% of K, the regime of FPFH
@@ -231,15 +242,8 @@ TEST(MaxClique, LargeNearCliquesAreProvedByTheCoverSearch) {
     const PlantedGraph nc = block_near_clique(c.k, c.outliers, 24, c.density, 7 + c.k);
     EXPECT_GT(nc.removed, 0.0) << c.k;
     EXPECT_GE(nc.omega, c.k / 2) << c.k;
-    for (const char* algorithm : {"cover", "auto", kDefaultCliqueAlgorithm}) {
-      CliqueSearchParams p;
-      p.time_limit_s = 120;  // a safety net against a hang, not a timing assertion
-      const auto r = CliqueAlgorithms::get(algorithm).run(nc.g, p);
-      EXPECT_TRUE(nc.g.is_clique(r.clique)) << algorithm << " k=" << c.k;
-      EXPECT_EQ(static_cast<int>(r.clique.size()), nc.omega) << algorithm << " k=" << c.k;
-      EXPECT_TRUE(r.optimal) << algorithm << " k=" << c.k;
-      EXPECT_EQ(r.upper_bound, nc.omega) << algorithm << " k=" << c.k;
-    }
+    for (const char* algorithm : {"cover", "auto", kDefaultCliqueAlgorithm})
+      expect_proves(algorithm, nc, c.k);
   }
 }
 
@@ -263,15 +267,7 @@ TEST(MaxClique, NearCliquesWithOneToFivePercentRemovedMatchTheirHubOracle) {
       for (const char* a : {"bbmc", "bbmcr", "bbmcx", "bbmcx-ls", "bbmc-kcore", "bbmc-dec"})
         algorithms.emplace_back(a);
     }
-    for (const std::string& algorithm : algorithms) {
-      CliqueSearchParams p;
-      p.time_limit_s = 120;  // a safety net against a hang, not a timing assertion
-      const auto r = CliqueAlgorithms::get(algorithm).run(nc.g, p);
-      EXPECT_TRUE(nc.g.is_clique(r.clique)) << algorithm << " k=" << c.k;
-      EXPECT_EQ(static_cast<int>(r.clique.size()), nc.omega) << algorithm << " k=" << c.k;
-      EXPECT_TRUE(r.optimal) << algorithm << " k=" << c.k;
-      EXPECT_EQ(r.upper_bound, nc.omega) << algorithm << " k=" << c.k;
-    }
+    for (const std::string& algorithm : algorithms) expect_proves(algorithm, nc, c.k);
   }
 }
 
