@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <stdexcept>
 #include <thread>
 
@@ -30,6 +31,9 @@ std::vector<int> greedy_clique(const BitGraph& g, const CoreDecomposition& cd) {
   return detail::greedy_clique(g, cd, detail::kNoDeadline, stopped);
 }
 
+// A greedy start that sees at least 1/kDenseStart of the vertices picks through the core order.
+constexpr int kDenseStart = 8;
+
 std::vector<int> detail::greedy_clique(const BitGraph& g, const CoreDecomposition& cd,
                                        SteadyClock::time_point deadline, bool& stopped,
                                        int max_starts) {
@@ -37,17 +41,44 @@ std::vector<int> detail::greedy_clique(const BitGraph& g, const CoreDecompositio
   int starts = 0;
   std::vector<int> best, clique;
   std::vector<Word> cand(static_cast<std::size_t>(W));
+  // Each step adds the candidate of highest core number (the lowest id among equals). From a
+  // start that sees few vertices, by scanning the candidates; from one that sees many (a
+  // near-clique), as the first vertex of `by_core` still a candidate: candidates only leave, so
+  // the scan never goes back, one pass over the vertices per start instead of a scan of every
+  // candidate per vertex added (which took 14 s for all the starts of a 4,500-vertex near-clique).
+  std::vector<int> by_core;  // all vertices, highest core first, ties by id; made when needed
+  auto highest_core = [&](int u, int pick) {
+    return pick < 0 ||
+           cd.core[static_cast<std::size_t>(u)] > cd.core[static_cast<std::size_t>(pick)];
+  };
   for (auto it = cd.order.rbegin(); it != cd.order.rend(); ++it) {
     const int v = *it;
     if (cd.core[v] + 1 <= static_cast<int>(best.size())) continue;
     if (starts++ == max_starts) break;
     clique.assign(1, v);
     std::copy(g.row(v), g.row(v) + W, cand.begin());
+    const bool dense = static_cast<long long>(kDenseStart) * g.degree(v) >= g.size();
+    if (dense && by_core.empty()) {
+      by_core.resize(static_cast<std::size_t>(g.size()));
+      std::iota(by_core.begin(), by_core.end(), 0);
+      std::stable_sort(by_core.begin(), by_core.end(),
+                       [&](int a, int b) { return highest_core(a, b); });
+    }
+    std::size_t at = 0;
     for (;;) {
       int pick = -1;
-      for_each_bit(cand.data(), W, [&](int u) {
-        if (pick < 0 || cd.core[u] > cd.core[pick]) pick = u;
-      });
+      if (dense) {
+        while (
+            at < by_core.size() &&
+            !((cand[static_cast<std::size_t>(by_core[at] / kBits)] >> (by_core[at] % kBits)) & 1)) {
+          ++at;
+        }
+        if (at < by_core.size()) pick = by_core[at];
+      } else {
+        for_each_bit(cand.data(), W, [&](int u) {
+          if (highest_core(u, pick)) pick = u;
+        });
+      }
       if (pick < 0) break;
       clique.push_back(pick);
       const Word* row = g.row(pick);
