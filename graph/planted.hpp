@@ -24,8 +24,9 @@ PlantedGraph block_near_clique(int k, int outliers, int block, double block_dens
 
 /// 1-5% of K's pairs removed, most of them at `hubs` (<= ~80) noisy vertices, as in a
 /// correspondence graph where matches with large errors break many constraints and the rest break
-/// a few. K = hubs S + blocks of 12; a pair of K is a non-edge only between two hubs (probability
-/// 1/2), a hub and any other vertex, or two vertices of one block (probability 0.2). A clique of K
+/// a few. K = hubs S + blocks of 12; a pair of K is a non-edge only between two hubs (each of the
+/// two draws it at 1/2: probability 3/4), a hub and any other vertex, or two vertices of one block
+/// (probability 0.2). A clique of K
 /// is a set I of hubs that is a clique plus, in every block, an independent set of the block's
 /// complement among the vertices every hub of I sees, so
 ///   omega(K) = max over cliques I of S of  |I| + sum_b alpha_b(B_b minus the non-neighbours of I)
