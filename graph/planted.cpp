@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace verifybench {
@@ -46,10 +48,29 @@ void add_outliers(PlantedGraph& nc, int k, const std::vector<int>& id, std::mt19
   }
 }
 
+/// k >= 1 and outliers >= 0, else std::invalid_argument naming the value.
+void check_sizes(int k, int outliers) {
+  if (k < 1) throw std::invalid_argument("planted graph: k " + std::to_string(k) + " < 1");
+  if (outliers < 0) {
+    throw std::invalid_argument("planted graph: outliers " + std::to_string(outliers) + " < 0");
+  }
+}
+
+constexpr int kMaxHubs = 100;
+
 }  // namespace
 
 PlantedGraph block_near_clique(int k, int outliers, int block, double block_density,
                                std::uint64_t seed) {
+  check_sizes(k, outliers);
+  if (block < 1 || block > 32) {
+    throw std::invalid_argument("planted graph: block " + std::to_string(block) +
+                                " outside 1..32 (the oracle works on 32-bit masks)");
+  }
+  if (!(block_density >= 0.0 && block_density <= 1.0)) {
+    throw std::invalid_argument("planted graph: block_density " + std::to_string(block_density) +
+                                " outside [0, 1]");
+  }
   std::mt19937_64 rng(seed);
   const std::vector<int> id = shuffled_ids(k + outliers, rng);
   PlantedGraph nc{BitGraph(k + outliers)};
@@ -82,14 +103,17 @@ PlantedGraph block_near_clique(int k, int outliers, int block, double block_dens
 }
 
 PlantedGraph hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) {
+  check_sizes(k, outliers);
+  if (hubs < 0 || hubs > std::min(k, kMaxHubs)) {
+    throw std::invalid_argument("planted graph: hubs " + std::to_string(hubs) + " outside 0.." +
+                                std::to_string(std::min(k, kMaxHubs)) +
+                                " (the oracle enumerates the hubs' cliques)");
+  }
   constexpr int kBlock = 12;
   std::mt19937_64 rng(seed);
   const std::vector<int> id = shuffled_ids(k + outliers, rng);
   PlantedGraph nc{BitGraph(k + outliers)};
   BitGraph cut(k);  // K's non-edges (ids 0..k-1: the hubs first, then the blocks in turn)
-  auto remove = [&](int a, int b) {
-    if (!cut.adjacent(a, b)) cut.add_edge(a, b);
-  };
   std::uniform_real_distribution<double> heavy(0.2, 0.6),
       log_light(std::log(0.001), std::log(0.05));
   std::bernoulli_distribution hub_pair(0.5), block_pair(0.2);
@@ -97,7 +121,7 @@ PlantedGraph hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) 
     std::bernoulli_distribution breaks(h % 2 == 0 ? heavy(rng) : std::exp(log_light(rng)));
     for (int v = 0; v < k; ++v) {
       if (v == h) continue;
-      if (v < hubs ? hub_pair(rng) : breaks(rng)) remove(h, v);
+      if (v < hubs ? hub_pair(rng) : breaks(rng)) cut.add_edge(h, v);
     }
   }
   const int blocks = (k - hubs + kBlock - 1) / kBlock;
@@ -109,7 +133,7 @@ PlantedGraph hub_near_clique(int k, int hubs, int outliers, std::uint64_t seed) 
     for (int a = 0; a < size; ++a) {
       for (int c = a + 1; c < size; ++c) {
         if (!block_pair(rng)) continue;
-        remove(first + a, first + c);
+        cut.add_edge(first + a, first + c);
         closed[static_cast<std::size_t>(a)] |= 1u << c;
         closed[static_cast<std::size_t>(c)] |= 1u << a;
       }

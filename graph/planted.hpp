@@ -2,7 +2,9 @@
 // Graphs with a planted near-clique whose clique number is known without any clique search, for
 // the tests (an oracle independent of cliques/) and the benchmarks (bench_clique). A near-clique K
 // (k vertices, some of their pairs removed) plus outliers that see fewer than omega / 2 vertices,
-// so that no clique through an outlier comes near omega; vertex ids are shuffled.
+// so that no clique through an outlier comes near omega; vertex ids are shuffled. Parameters out
+// of range (k < 1, outliers < 0, block outside 1..32, a density outside [0, 1], hubs outside
+// 0..min(k, 100)) throw std::invalid_argument naming the value.
 #include <cstdint>
 
 #include "graph/bitgraph.hpp"
@@ -22,7 +24,7 @@ struct PlantedGraph {
 PlantedGraph block_near_clique(int k, int outliers, int block, double block_density,
                                std::uint64_t seed);
 
-/// 1-5% of K's pairs removed, most of them at `hubs` (<= ~80) noisy vertices, as in a
+/// 1-5% of K's pairs removed, most of them at `hubs` (<= 100) noisy vertices, as in a
 /// correspondence graph where matches with large errors break many constraints and the rest break
 /// a few. K = hubs S + blocks of 12; a pair of K is a non-edge only between two hubs (each of the
 /// two draws it at 1/2: probability 3/4), a hub and any other vertex, or two vertices of one block

@@ -272,6 +272,19 @@ TEST(MaxClique, NearCliquesWithOneToFivePercentRemovedMatchTheirHubOracle) {
   }
 }
 
+TEST(PlantedGraph, RefusesParametersItsOracleCannotHandle) {
+  EXPECT_THROW(block_near_clique(0, 10, 8, 0.1, 1), std::invalid_argument);
+  EXPECT_THROW(block_near_clique(50, -1, 8, 0.1, 1), std::invalid_argument);
+  EXPECT_THROW(block_near_clique(50, 10, 0, 0.1, 1), std::invalid_argument);  // would never end
+  EXPECT_THROW(block_near_clique(50, 10, 33, 0.1, 1), std::invalid_argument);
+  EXPECT_THROW(block_near_clique(50, 10, 8, 1.5, 1), std::invalid_argument);
+  EXPECT_THROW(hub_near_clique(50, 51, 10, 1), std::invalid_argument);
+  EXPECT_THROW(hub_near_clique(500, 101, 10, 1), std::invalid_argument);
+  EXPECT_THROW(hub_near_clique(50, -1, 10, 1), std::invalid_argument);
+  EXPECT_EQ(block_near_clique(50, 0, 32, 0.0, 1).omega, 50);  // nothing removed: K itself
+  EXPECT_EQ(hub_near_clique(60, 0, 0, 1).g.size(), 60);
+}
+
 TEST(MaxClique, DecompositionGivesTheSameCliqueForAnyThreadCount) {
   // Random graphs have many maximum cliques; the parallel search must still return the same one.
   register_clique_algorithms();
