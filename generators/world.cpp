@@ -5,6 +5,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "core/random.hpp"
@@ -32,8 +33,8 @@ void Mesh::add_box(const Eigen::Vector3d& base, const Eigen::Vector3d& half, dou
 
 void Mesh::add_octahedron(const Eigen::Vector3d& centre, const Eigen::Vector3d& half) {
   const int first = static_cast<int>(vertices.size());
-  const Eigen::Vector3d d[6] = {{half.x(), 0, 0}, {-half.x(), 0, 0}, {0, half.y(), 0},
-                                {0, -half.y(), 0}, {0, 0, half.z()}, {0, 0, -half.z()}};
+  const Eigen::Vector3d d[6] = {{half.x(), 0, 0},  {-half.x(), 0, 0}, {0, half.y(), 0},
+                                {0, -half.y(), 0}, {0, 0, half.z()},  {0, 0, -half.z()}};
   for (const auto& v : d) vertices.push_back((centre + v).cast<float>());
   static const int kFaces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                                    {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
@@ -43,8 +44,8 @@ void Mesh::add_octahedron(const Eigen::Vector3d& centre, const Eigen::Vector3d& 
 void WorldParams::validate() const {
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0) || !std::isfinite(v)) {
-      throw std::invalid_argument(std::string("world: ") + name + " must be a positive number, got " +
-                                  std::to_string(v));
+      throw std::invalid_argument(std::string("world: ") + name +
+                                  " must be a positive number, got " + std::to_string(v));
     }
   };
   positive("road_half_width", road_half_width);
@@ -149,9 +150,11 @@ struct Placer {
       m.add_box(base, {0.2, 0.2, h / 2}, uniform(0.0, M_PI));
       const int lobes = static_cast<int>(uniform(1.0, 4.0));  // a crown of 1-3 lobes
       for (int k = 0; k < lobes; ++k) {
-        const Eigen::Vector3d off(uniform(-0.6, 0.6) * r, uniform(-0.6, 0.6) * r, uniform(0.5, 1.2) * r);
+        const Eigen::Vector3d off(uniform(-0.6, 0.6) * r, uniform(-0.6, 0.6) * r,
+                                  uniform(0.5, 1.2) * r);
         const double rk = r * uniform(0.6, 1.0);
-        m.add_octahedron(base + Eigen::Vector3d(0, 0, h) + off, {rk, rk * uniform(0.7, 1.3), rk * uniform(0.8, 1.4)});
+        m.add_octahedron(base + Eigen::Vector3d(0, 0, h) + off,
+                         {rk, rk * uniform(0.7, 1.3), rk * uniform(0.8, 1.4)});
       }
       ++world.counts["trees"];
     } else if (kind < 0.85) {  // parked car: body and cabin, along the road
@@ -160,7 +163,8 @@ struct Placer {
       m.add_box(base + Eigen::Vector3d(0, 0, 1.1), {1.1, 0.8, 0.3}, yaw);
       ++world.counts["cars"];
     } else {  // clutter: a bin, a bollard, a cabinet
-      m.add_box(base, {uniform(0.2, 0.8), uniform(0.2, 0.8), uniform(0.3, 0.8)}, uniform(0.0, M_PI));
+      m.add_box(base, {uniform(0.2, 0.8), uniform(0.2, 0.8), uniform(0.3, 0.8)},
+                uniform(0.0, M_PI));
       ++world.counts["clutter"];
     }
   }
@@ -188,8 +192,9 @@ struct Placer {
         const double lx = along_x ? u : sign * (face + depth / 2);
         const double ly = along_x ? sign * (face + depth / 2) : u;
         const Eigen::Vector3d off(c * lx - s * ly, s * lx + c * ly, z);
-        const Eigen::Vector3d half = along_x ? Eigen::Vector3d(width / 2, depth / 2, uniform(0.2, 1.2))
-                                             : Eigen::Vector3d(depth / 2, width / 2, uniform(0.2, 1.2));
+        const Eigen::Vector3d half = along_x
+                                         ? Eigen::Vector3d(width / 2, depth / 2, uniform(0.2, 1.2))
+                                         : Eigen::Vector3d(depth / 2, width / 2, uniform(0.2, 1.2));
         m.add_box(base + off, half, yaw);
         ++world.counts["facade_details"];
       }
@@ -291,15 +296,26 @@ World build_street_world(const std::vector<Rigid<3>>& path, const WorldParams& p
 }
 
 std::vector<Rigid<3>> block_laps(double width, double height, int laps, double step) {
+  if (!(width > 0) || !(height > 0) || !(step > 0) || laps < 0 ||
+      2 * (width + height) / step * laps > 1e7) {
+    throw std::invalid_argument("block_laps: width " + std::to_string(width) + ", height " +
+                                std::to_string(height) + ", laps " + std::to_string(laps) +
+                                ", step " + std::to_string(step) +
+                                ": sizes and step must be > 0, laps >= 0, at most 1e7 poses");
+  }
   const double W = width, H = height;
   std::vector<Rigid<3>> path;
   for (int lap = 0; lap < laps; ++lap) {
     for (double s = 0; s < 2 * (W + H); s += step) {
       double x, y, yaw;
-      if (s < W) x = s, y = 0, yaw = 0;
-      else if (s < W + H) x = W, y = s - W, yaw = M_PI / 2;
-      else if (s < 2 * W + H) x = W - (s - W - H), y = H, yaw = M_PI;
-      else x = 0, y = H - (s - 2 * W - H), yaw = -M_PI / 2;
+      if (s < W)
+        x = s, y = 0, yaw = 0;
+      else if (s < W + H)
+        x = W, y = s - W, yaw = M_PI / 2;
+      else if (s < 2 * W + H)
+        x = W - (s - W - H), y = H, yaw = M_PI;
+      else
+        x = 0, y = H - (s - 2 * W - H), yaw = -M_PI / 2;
       Rigid<3> T = Rigid<3>::Identity();
       T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
       T.translation() << x, y, 0.0;

@@ -40,7 +40,7 @@ TEST(Lidar, RayAgainstAKnownBox) {
   EXPECT_NEAR(lidar.cast({0, 0, 1}, {1, 0, 0}), 9.0, 1e-5);
   EXPECT_NEAR(lidar.cast({0, 1.5, 2.9}, {1, 0, 0}), 9.0, 1e-5);
   EXPECT_NEAR(lidar.cast({10, 0, 10}, {0, 0, -1}), 7.0, 1e-5);  // the top face at z = 3
-  EXPECT_TRUE(std::isinf(lidar.cast({0, 0, 1}, {3, 4, 0})));  // passes beside it
+  EXPECT_TRUE(std::isinf(lidar.cast({0, 0, 1}, {3, 4, 0})));    // passes beside it
   EXPECT_TRUE(std::isinf(lidar.cast({0, 0, 1}, {-1, 0, 0})));
   EXPECT_TRUE(std::isinf(lidar.cast({0, 0, 3.5}, {1, 0, 0})));  // above it
   // Turned by 90 degrees: its long side now lies along x.
@@ -124,7 +124,8 @@ TEST(World, RoadIsClearAndGroundUnderTheSensor) {
 
 TEST(Odometry, ZeroNoiseIsTheTruthAndNoiseIsSeeded) {
   std::vector<vb::Rigid<3>> truth;
-  for (int i = 0; i < 100; ++i) truth.push_back(pose(10 * std::cos(i * 0.05), 10 * std::sin(i * 0.05), i * 0.05 + M_PI / 2));
+  for (int i = 0; i < 100; ++i)
+    truth.push_back(pose(10 * std::cos(i * 0.05), 10 * std::sin(i * 0.05), i * 0.05 + M_PI / 2));
   vb::DriftParams none{0.0, 0.0, 0.0};
   const auto same = vb::drift_odometry(truth, none, 1);
   for (std::size_t i = 0; i < truth.size(); ++i) {
@@ -214,4 +215,13 @@ TEST(World, BlockLapsGoRoundTheRectangleAndRepeat) {
   at(60, 20, 20, M_PI);
   at(95, 0, 5, -M_PI / 2);
   for (std::size_t k = 0; k < 100; ++k) EXPECT_TRUE(path[k].isApprox(path[k + 100], 1e-12)) << k;
+}
+
+TEST(World, BlockLapsRefuseSizesThatDrawNoPath) {
+  EXPECT_THROW(vb::block_laps(30, 20, 2, 0.0), std::invalid_argument);  // would never end
+  EXPECT_THROW(vb::block_laps(-30, 20, 2), std::invalid_argument);
+  EXPECT_THROW(vb::block_laps(30, std::nan(""), 2), std::invalid_argument);
+  EXPECT_THROW(vb::block_laps(30, 20, -1), std::invalid_argument);
+  EXPECT_THROW(vb::block_laps(1e6, 1e6, 10), std::invalid_argument);  // 4e7 poses
+  EXPECT_TRUE(vb::block_laps(30, 20, 0).empty());
 }
