@@ -32,6 +32,7 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
       r.null_sd = c.null.sd;
       r.null_draws = c.null.draws;
       r.null_limited_draws = c.limited_draws;
+      r.null_screened = c.screened;
       r.calibration_ms = c.ms;
     } catch (const std::exception& e) {
       result.status = Status::error;

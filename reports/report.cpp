@@ -182,6 +182,7 @@ json to_json(const TrialRecord& r) {
             {"null_sd", number_or_null(r.null_sd)},
             {"null_draws", r.null_draws},
             {"null_limited_draws", r.null_limited_draws},
+            {"null_screened", r.null_screened},
             {"calibration_ms", r.calibration_ms},
             {"distinct_inliers", r.distinct_inliers ? json(*r.distinct_inliers) : json(nullptr)},
             {"lever_arm", number_or_null(r.lever_arm)},

@@ -41,6 +41,11 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
     return result;
   }
 
+  template <int Dim>
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
+    return clique_number_bound(corr, params, params.eps);
+  }
+
  private:
   CliqueAlgorithm algorithm_;
 };

@@ -77,6 +77,12 @@ class MacSolver : public SolverBase<MacSolver> {
     decide(result, corr, params, complete);
     return result;
   }
+
+  /// The reported inliers are one motion's consensus (take_consensus_with_refit).
+  template <int Dim>
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
+    return consensus_bound(corr, params);
+  }
 };
 
 }  // namespace

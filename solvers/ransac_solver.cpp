@@ -23,6 +23,7 @@
 #include "core/rigid_fit.hpp"
 #include "core/timer.hpp"
 #include "solvers/detail/consensus.hpp"
+#include "solvers/detail/graph_stage.hpp"
 #include "solvers/detail/ransac_kernels.hpp"
 #include "solvers/registry.hpp"
 
@@ -351,6 +352,19 @@ class RansacSolver : public SolverBase<RansacSolver> {
     Variant v = v_;
     if (v.follow_adaptive_flag) v.adaptive = params.ransac.adaptive;
     return Engine<Dim>(corr, params, v).run();
+  }
+
+  /// Every variant reports the consensus of one motion (take_consensus_with_refit), so the
+  /// consensus bound holds for all; it is offered only where it is cheaper than a null solve. The
+  /// bound's graph costs n^2 / 2 pair tests. A null set has no consensus to end an adaptive count,
+  /// so a null solve runs the whole cap of `iterations` hypotheses, each counted over the n
+  /// correspondences, unless the edge-length pre-check rejects the samples first (lo-ransac,
+  /// prosac: their null solves cost a few ms). Break-even measured near n = 0.6 iterations
+  /// (BENCHMARK.md section 21); offered up to n = iterations / 2.
+  template <int Dim>
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
+    if (v_.edge_similarity > 0.0 || 2 * corr.size() > params.ransac.iterations) return std::nullopt;
+    return consensus_bound(corr, params);
   }
 
  private:

@@ -52,6 +52,13 @@ class Solver {
   virtual ~Solver() = default;
   virtual Result<2> solve(const Correspondences<2>& corr, const SolverParams& params) const = 0;
   virtual Result<3> solve(const Correspondences<3>& corr, const SolverParams& params) const = 0;
+  /// An upper bound on the score (the selection's size) that `solve` can reach on `corr`, far
+  /// cheaper than solving; nullopt when the solver has none. The calibrated rule screens the
+  /// permuted sets with it before it solves them (calibration.hpp).
+  virtual std::optional<int> score_bound(const Correspondences<2>& corr,
+                                         const SolverParams& params) const = 0;
+  virtual std::optional<int> score_bound(const Correspondences<3>& corr,
+                                         const SolverParams& params) const = 0;
 };
 
 /// Implements both virtual entry points with one template `Derived::run<Dim>`, so hot loops are
@@ -65,8 +72,34 @@ class SolverBase : public Solver {
   Result<3> solve(const Correspondences<3>& corr, const SolverParams& params) const override {
     return guarded<3>(corr, params);
   }
+  std::optional<int> score_bound(const Correspondences<2>& corr,
+                                 const SolverParams& params) const override {
+    return guarded_bound<2>(corr, params);
+  }
+  std::optional<int> score_bound(const Correspondences<3>& corr,
+                                 const SolverParams& params) const override {
+    return guarded_bound<3>(corr, params);
+  }
+
+  /// No bound; a solver that has one declares its own `bound<Dim>`, which hides this one.
+  template <int Dim>
+  std::optional<int> bound(const Correspondences<Dim>&, const SolverParams&) const {
+    return std::nullopt;
+  }
 
  private:
+  template <int Dim>
+  std::optional<int> guarded_bound(const Correspondences<Dim>& corr,
+                                   const SolverParams& params) const {
+    try {
+      params.validate();
+      validate(corr);
+      return static_cast<const Derived&>(*this).template bound<Dim>(corr, params);
+    } catch (const std::exception&) {
+      return std::nullopt;  // no screen; the solve itself reports the problem
+    }
+  }
+
   template <int Dim>
   Result<Dim> guarded(const Correspondences<Dim>& corr, const SolverParams& params) const {
     try {

@@ -129,15 +129,18 @@ TEST(NullModel, NeverBelowThePermutationFloorAndRejectsBadInput) {
   EXPECT_THROW(fit_null({3, -1}), std::invalid_argument);
 }
 
-TEST(Calibration, EarlyStopsGiveTheDecisionOfAllDraws) {
+void expect_early_stops_give_the_decision_of_all_draws(const std::string& name) {
   // Oracle: the K null solves made by hand from the documented seeds, fitted on all K.
-  const auto solver = SolverRegistry::create("clique");
+  const auto solver = SolverRegistry::create(name);
   SolverParams params;
   params.eps = 0.3;
+  params.inlier_threshold = 0.15;
+  params.ransac.iterations = 1000;  // a ransac bound is offered up to n = iterations / 2
   params.accept.null_draws = 12;
-  int early = 0, accepted = 0;
-  for (std::uint64_t seed = 1; seed <= 16; ++seed) {
-    const double ratio = seed % 2 ? 0.97 : 0.985;
+  int early = 0, accepted = 0, screened = 0;
+  constexpr int kSets = 24;
+  for (std::uint64_t seed = 1; seed <= kSets; ++seed) {
+    const double ratio = seed % 3 == 0 ? 0.8 : seed % 3 == 1 ? 0.97 : 0.985;
     const LabeledSet<3> set = draw<3>(300, ratio, seed, seed % 4 == 0);
     params.seed = derive_seed(seed, {9});
     const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
@@ -152,17 +155,94 @@ TEST(Calibration, EarlyStopsGiveTheDecisionOfAllDraws) {
     }
     const NullFit full = fit_null(all);
     EXPECT_EQ(c.p_value < params.accept.alpha, full.p_value(observed) < params.accept.alpha)
-        << "seed " << seed << " observed " << observed;
-    EXPECT_TRUE(std::equal(c.null.scores.begin(), c.null.scores.end(), all.begin()));
+        << name << " seed " << seed << " observed " << observed << " screened " << c.screened;
+    ASSERT_LE(c.null.scores.size(), all.size());
+    for (std::size_t k = 0; k < c.null.scores.size(); ++k) {
+      // A screen's bounds are never below the scores of the same permuted sets.
+      if (c.screened) {
+        EXPECT_GE(c.null.scores[k], all[k]) << name << " seed " << seed << " draw " << k;
+      } else {
+        EXPECT_EQ(c.null.scores[k], all[k]) << name << " seed " << seed << " draw " << k;
+      }
+    }
     early += c.null.draws < params.accept.null_draws;
     accepted += c.p_value < params.accept.alpha;
+    screened += c.screened;
     if (c.p_value < params.accept.alpha && c.null.draws < params.accept.null_draws) {
       EXPECT_GE(c.null.draws, kMinDrawsToAccept) << "seed " << seed;  // no accept before it
     }
+    if (c.screened) {
+      EXPECT_EQ(c.null.draws, kMinDrawsToAccept);
+      EXPECT_LT(c.p_value, params.accept.alpha);
+    }
   }
-  EXPECT_GE(early, 6);  // many pairs are decided before the last draw
-  EXPECT_GT(accepted, 0);
-  EXPECT_LT(accepted, 16);
+  EXPECT_GE(early, kSets / 3) << name;  // many pairs are decided before the last draw
+  EXPECT_GT(accepted, 0) << name;
+  EXPECT_LT(accepted, kSets) << name;
+  EXPECT_GT(screened, 0) << name;  // the clear positives (80% outliers) pass the screen
+}
+
+TEST(Calibration, EarlyStopsAndTheScreenGiveTheDecisionOfAllDraws) {
+  for (const char* name : {"clique", "ransac", "mac"}) {
+    expect_early_stops_give_the_decision_of_all_draws(name);
+  }
+}
+
+/// The largest clique of Eq. (1)'s graph at eps, by enumerating every subset (n <= 16).
+template <int Dim>
+int brute_force_omega(const Correspondences<Dim>& c, double eps) {
+  const int n = static_cast<int>(c.size());
+  int best = 0;
+  for (std::uint32_t mask = 1; mask < (1u << n); ++mask) {
+    const int size = __builtin_popcount(mask);
+    if (size <= best) continue;
+    bool clique = true;
+    for (int i = 0; i < n && clique; ++i) {
+      for (int j = i + 1; j < n && clique; ++j) {
+        if (!((mask >> i) & 1) || !((mask >> j) & 1)) continue;
+        clique = std::abs((c.source.col(i) - c.source.col(j)).norm() -
+                          (c.target.col(i) - c.target.col(j)).norm()) < eps;
+      }
+    }
+    if (clique) best = size;
+  }
+  return best;
+}
+
+TEST(ScoreBound, NeverBelowTheCliqueNumberOrAnyScoreAndExactOnAllInliers) {
+  // Oracles: brute-force omega of the graph (clique solvers) and of the graph at twice the
+  // inlier threshold (consensus solvers: a consensus is a clique there); every score below its
+  // bound; a set of inliers only is one clique, so its bound is n.
+  SolverParams params;
+  params.eps = 0.4;
+  params.inlier_threshold = 0.2;
+  params.ransac.iterations = 400;
+  for (const char* name : {"clique", "clique-bbmc", "ransac", "ransac-adaptive", "msac", "mac"}) {
+    const auto solver = SolverRegistry::create(name);
+    const bool consensus = std::string(name).find("clique") == std::string::npos;
+    const double graph_eps = consensus ? 2.0 * params.inlier_threshold : params.eps;
+    for (std::uint64_t seed = 1; seed <= 30; ++seed) {
+      const LabeledSet<3> set = draw<3>(16, seed % 3 == 0 ? 0.0 : 0.5, seed, seed % 5 == 0);
+      const std::optional<int> bound = solver->score_bound(set.corr, params);
+      ASSERT_TRUE(bound.has_value()) << name;
+      EXPECT_GE(*bound, brute_force_omega(set.corr, graph_eps)) << name << " seed " << seed;
+      params.seed = seed;
+      EXPECT_LE(static_cast<int>(solver->solve(set.corr, params).inliers.size()), *bound)
+          << name << " seed " << seed;
+      const LabeledSet<3> big = draw<3>(200, 0.0, seed);  // noise far below the tolerances
+      EXPECT_EQ(solver->score_bound(big.corr, params), 200) << name;
+    }
+  }
+  // A solver without a bound says so: jcbb; the RANSACs where a null solve is the cheaper (an
+  // edge-length pre-check, or more correspondences than half the iterations). A bad set gives
+  // none (the solve reports it).
+  EXPECT_FALSE(SolverRegistry::create("jcbb")->score_bound(draw<3>(16, 0.5, 1).corr, params));
+  EXPECT_FALSE(SolverRegistry::create("lo-ransac")->score_bound(draw<3>(16, 0.5, 1).corr, params));
+  EXPECT_FALSE(SolverRegistry::create("ransac")->score_bound(draw<3>(201, 0.5, 1).corr, params));
+  EXPECT_TRUE(SolverRegistry::create("ransac")->score_bound(draw<3>(200, 0.5, 1).corr, params));
+  Correspondences<3> bad = draw<3>(16, 0.5, 1).corr;
+  bad.target(0, 3) = std::nan("");
+  EXPECT_FALSE(SolverRegistry::create("clique")->score_bound(bad, params));
 }
 
 template <int Dim>

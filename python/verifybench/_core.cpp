@@ -139,6 +139,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["null_threshold"] =
       calibration ? py::object(py::int_(calibration->threshold)) : py::object(py::none());
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;
+  out["null_screened"] = calibration ? calibration->screened : false;
   return out;
 }
 
