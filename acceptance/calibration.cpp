@@ -56,25 +56,28 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
   auto null_set = [&](int k) {
     return permute_targets(corr, derive_seed(params.seed, {kNullStream, std::uint64_t(k)}));
   };
-  // The screen: a bound costs a graph and its core numbers, a null solve a whole search. It is
-  // skipped where even bounds of 0 could not accept (the cautious fit's p only grows with them:
-  // 34 at alpha = 0.001), and gives up at the first bound that reaches the observed score.
+  // The screen: a bound costs a few small graphs and their core numbers, a null solve a whole
+  // search. It is skipped where even bounds of 0 could not accept (the cautious fit's p only grows
+  // with them: 34 at alpha = 0.001); it gives up at the first bound that reaches the observed
+  // score, and once even the plain fit of the bounds keeps p >= alpha (more bounds only narrow
+  // the cautious fit towards it).
   const std::vector<int> zeros(static_cast<std::size_t>(kMinDrawsToAccept), 0);
   if (draws > kMinDrawsToAccept && cautious_fit(zeros).p_value(observed) < alpha) {
     std::vector<int> bounds;
-    for (int k = 0; k < kMinDrawsToAccept; ++k) {
+    for (int k = 0; k < draws; ++k) {
       const std::optional<int> b = solver.score_bound(null_set(k), inner);
       if (!b || *b >= observed) break;
       bounds.push_back(*b);
-    }
-    if (static_cast<int>(bounds.size()) == kMinDrawsToAccept &&
-        cautious_fit(bounds).p_value(observed) < alpha) {
-      c.null = fit_null(bounds);
-      c.p_value = c.null.p_value(observed);
-      c.threshold = c.null.threshold(alpha);
-      c.screened = true;
-      c.ms = clock.ms();
-      return c;
+      if (static_cast<int>(bounds.size()) < kMinDrawsToAccept) continue;
+      if (cautious_fit(bounds).p_value(observed) < alpha) {
+        c.null = fit_null(bounds);
+        c.p_value = c.null.p_value(observed);
+        c.threshold = c.null.threshold(alpha);
+        c.screened = true;
+        c.ms = clock.ms();
+        return c;
+      }
+      if (fit_null(bounds).p_value(observed) >= alpha) break;
     }
   }
   std::vector<int> scores;

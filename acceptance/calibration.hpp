@@ -24,7 +24,7 @@ struct Calibration {
   int threshold = 0;        ///< the smallest score accepted at alpha
   int limited_draws = 0;    ///< null solves stopped by the time limit (their upper bound counted)
   /// Accepted by the screen: `null` was fitted to the solver's score bounds on the first
-  /// kMinDrawsToAccept permuted sets, and no null set was solved.
+  /// null.draws permuted sets, and no null set was solved.
   bool screened = false;
   double ms = 0.0;          ///< wall time of the null solves
 };
@@ -36,10 +36,10 @@ struct Calibration {
 /// when even cautious_fit() puts `observed` below alpha; null.draws says how many ran. A null solve stopped by the time limit counts with its proven
 /// upper bound when it has one (clique solvers), so a limit never makes chance look smaller.
 /// First, when the solver has a score bound (Solver::score_bound), a screen: the bounds of the
-/// first kMinDrawsToAccept permuted sets (the same sets the draws would solve) are a null of a
-/// statistic that is never below the score, so when even cautious_fit() of the bounds puts
-/// `observed` below alpha the pair is accepted without a null solve (the early accept's test, on
-/// a stochastically larger null); otherwise the draws run as above.
+/// permuted sets (the same sets the draws would solve, at least kMinDrawsToAccept, at most K) are
+/// a null of a statistic that is never below the score, so when even cautious_fit() of the bounds
+/// puts `observed` below alpha the pair is accepted without a null solve (the early accept's test,
+/// on a stochastically larger null); otherwise the draws run as above.
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
