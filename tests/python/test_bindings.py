@@ -88,6 +88,12 @@ def test_calibrated_rule_accepts_a_loop_and_rejects_a_negative():
     assert not b["accepted"] and b["p_value"] >= 0.001
     count = vb.solve("clique", neg["src"], neg["dst"], eps=0.5)  # the paper's count rule
     assert count["accepted"] and len(count["inliers"]) >= 5 and count["p_value"] is None
+    # 25 inliers: below the 34 any screen of score bounds needs, so the null was solved; 250
+    # inliers: the bounds of the permuted sets (near the chance cliques) decide it
+    clear = vb.synthetic(n=500, outliers=0.5, dim=3, seed=2)
+    c = vb.solve("clique", clear["src"], clear["dst"], eps=0.5, accept="pvalue")
+    assert c["accepted"] and c["null_screened"]
+    assert not a["null_screened"] and not b["null_screened"] and not count["null_screened"]
 
 
 def test_generators_are_seeded():
