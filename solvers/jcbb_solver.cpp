@@ -242,14 +242,17 @@ class Search {
   typename Correspondences<Dim>::Points pred_;  ///< prior mode: T0 m_i
 };
 
+/// The pair test's graph: Eq. (1) at |d_ij| < 2 sigma sqrt(chi2(1, alpha)).
+double pair_eps(const SolverParams& params) {
+  return 2.0 * params.jcbb_point_sigma() * std::sqrt(chi2_quantile(params.jcbb.confidence, 1));
+}
+
 class JcbbSolver : public SolverBase<JcbbSolver> {
  public:
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;
-    const double sigma = params.jcbb_point_sigma();
-    const double pair_eps = 2.0 * sigma * std::sqrt(chi2_quantile(params.jcbb.confidence, 1));
-    const auto built = build_graph_stage(corr, params, result, pair_eps);
+    const auto built = build_graph_stage(corr, params, result, pair_eps(params));
     if (!built) return result;
     const BitGraph& graph = *built;
     SolverParams rest = params;  // the search gets what the graph left of the limit
@@ -268,6 +271,12 @@ class JcbbSolver : public SolverBase<JcbbSolver> {
     result.times.fit_ms = fit_clock.ms();
     decide(result, corr, params, !search.stopped);
     return result;
+  }
+
+  /// H only grows by matches adjacent to all of it in the pair test's graph: a clique there.
+  template <int Dim>
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
+    return clique_number_bound(corr, params, pair_eps(params));
   }
 };
 

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "acceptance/calibration.hpp"
+#include "core/chi2.hpp"
 #include "core/errors.hpp"
 #include "core/random.hpp"
 #include "datasets/dump_format.hpp"
@@ -238,10 +239,16 @@ TEST(ScoreBound, NeverBelowTheCliqueNumberOrAnyScoreAndExactOnAllInliers) {
   params.eps = 0.4;
   params.inlier_threshold = 0.2;
   params.ransac.iterations = 400;
-  for (const char* name : {"clique", "clique-bbmc", "ransac", "ransac-adaptive", "msac", "mac"}) {
+  for (const char* name :
+       {"clique", "clique-bbmc", "ransac", "ransac-adaptive", "msac", "mac", "jcbb"}) {
     const auto solver = SolverRegistry::create(name);
     const bool consensus = std::string(name).find("clique") == std::string::npos;
-    const double graph_eps = consensus ? 2.0 * params.inlier_threshold : params.eps;
+    // jcbb's sets are cliques of its pair test's graph: eps = 2 sigma sqrt(chi2(1, 0.95)), sigma
+    // = t / 3 by default.
+    const double graph_eps =
+        std::string(name) == "jcbb"
+            ? 2.0 * params.inlier_threshold / 3.0 * std::sqrt(chi2_quantile(0.95, 1))
+            : consensus ? 2.0 * params.inlier_threshold : params.eps;
     for (std::uint64_t seed = 1; seed <= 30; ++seed) {
       const LabeledSet<3> set = draw<3>(16, seed % 3 == 0 ? 0.0 : 0.5, seed, seed % 5 == 0);
       const std::optional<int> bound = solver->score_bound(set.corr, params);
@@ -254,10 +261,9 @@ TEST(ScoreBound, NeverBelowTheCliqueNumberOrAnyScoreAndExactOnAllInliers) {
       EXPECT_EQ(solver->score_bound(big.corr, params), 200) << name;
     }
   }
-  // A solver without a bound says so: jcbb; the RANSACs where a null solve is the cheaper (an
+  // A solver without a bound says so: the RANSACs where a null solve is the cheaper (an
   // edge-length pre-check, or parts larger than the iterations). A bad set gives none (the solve
   // reports it).
-  EXPECT_FALSE(SolverRegistry::create("jcbb")->score_bound(draw<3>(16, 0.5, 1).corr, params));
   EXPECT_FALSE(SolverRegistry::create("lo-ransac")->score_bound(draw<3>(16, 0.5, 1).corr, params));
   EXPECT_FALSE(SolverRegistry::create("ransac")->score_bound(draw<3>(401, 0.5, 1).corr, params));
   EXPECT_TRUE(SolverRegistry::create("ransac")->score_bound(draw<3>(400, 0.5, 1).corr, params));
