@@ -99,6 +99,20 @@ Measured solve(const std::string& solver, vb::LabeledSet<Dim> set, vb::SolverPar
   };
 }
 
+/// The default clique solver under the calibrated rule, as the CLI runs it (solve, then the
+/// screen of score bounds and the null solves); check = inliers, null draws, screened, accepted.
+Measured calibrated_clique(vb::LabeledSet<3> set) {
+  vb::register_builtin_solvers();
+  vb::SolverParams p = one_thread(0.1);
+  p.accept.rule = vb::AcceptParams::Rule::pvalue;
+  auto solver = std::shared_ptr<vb::Solver>(vb::SolverRegistry::create("clique"));
+  return [solver, p, set = std::move(set)] {
+    const auto r = vb::evaluate<3>(*solver, "clique", set, p, vb::SuccessCriteria{});
+    return "inliers=" + std::to_string(r.inliers) + ",null_draws=" + std::to_string(r.null_draws) +
+           ",screened=" + std::to_string(r.null_screened) + ",accepted=" + std::to_string(r.accepted);
+  };
+}
+
 std::string need_dir(const std::string& path) {
   return fs::exists(path) ? "" : path + " absent";
 }
@@ -174,32 +188,13 @@ std::vector<Workload> workloads() {
                [] { return clique_on(vb::read_dimacs(kData + "/dimacs/brock200_1.clq"), "auto"); }});
   w.push_back({"calibrated_clique_n1000",
                "default clique solver under the calibrated rule (solve + permutation null), n = 1000, 99% outliers",
-               [] { return std::string(); }, [] {
-                 vb::register_builtin_solvers();
-                 vb::SolverParams p = one_thread(0.1);
-                 p.accept.rule = vb::AcceptParams::Rule::pvalue;
-                 auto solver = std::shared_ptr<vb::Solver>(vb::SolverRegistry::create("clique"));
-                 return Measured([solver, p, set = synthetic<3>(1000, 0.99, 0.01, 1)] {
-                   const auto r = vb::evaluate<3>(*solver, "clique", set, p, vb::SuccessCriteria{});
-                   return "inliers=" + std::to_string(r.inliers) + ",null_draws=" +
-                          std::to_string(r.null_draws) + ",accepted=" + std::to_string(r.accepted);
-                 });
-               }});
+               [] { return std::string(); },
+               [] { return calibrated_clique(synthetic<3>(1000, 0.99, 0.01, 1)); }});
   w.push_back({"calibrated_clique_clear_n2000",
                "default clique solver under the calibrated rule on a clear positive (n = 2000, 50% "
                "outliers): the screen of score bounds decides it, no null solve",
-               [] { return std::string(); }, [] {
-                 vb::register_builtin_solvers();
-                 vb::SolverParams p = one_thread(0.1);
-                 p.accept.rule = vb::AcceptParams::Rule::pvalue;
-                 auto solver = std::shared_ptr<vb::Solver>(vb::SolverRegistry::create("clique"));
-                 return Measured([solver, p, set = synthetic<3>(2000, 0.5, 0.01, 1)] {
-                   const auto r = vb::evaluate<3>(*solver, "clique", set, p, vb::SuccessCriteria{});
-                   return "inliers=" + std::to_string(r.inliers) + ",null_draws=" +
-                          std::to_string(r.null_draws) + ",screened=" +
-                          std::to_string(r.null_screened) + ",accepted=" + std::to_string(r.accepted);
-                 });
-               }});
+               [] { return std::string(); },
+               [] { return calibrated_clique(synthetic<3>(2000, 0.5, 0.01, 1)); }});
   w.push_back({"ransac_10k_n1000", "RANSAC, the paper's fixed 10,000 hypotheses, n = 1000, 90% outliers",
                [] { return std::string(); },
                [] { return solve<3>("ransac", synthetic<3>(1000, 0.9, 0.01, 1), one_thread(0.1)); }});
