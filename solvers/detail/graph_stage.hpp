@@ -1,6 +1,7 @@
 #pragma once
-// The graph stage shared by the graph-based solvers (clique-*, mac): Eq. (1) with the solver's
-// parameters, timed into result.times.graph_ms, its edge count into result.counters.graph_edges.
+// The graph stage shared by the graph-based solvers (clique-*, mac, jcbb): Eq. (1) with the
+// solver's parameters, timed into result.times.graph_ms, its edge count into
+// result.counters.graph_edges; and the clique-number bound behind their score bounds.
 #include <algorithm>
 #include <optional>
 
@@ -40,7 +41,7 @@ std::optional<BitGraph> build_graph_stage(const Correspondences<Dim>& corr,
 }
 
 /// Correspondences per part of clique_number_bound: parts of this size build in a few ms, and
-/// their bounds add up to within 1-2% of the whole graph's on 25,000-correspondence k-NN nulls.
+/// their bounds add up to within 1-3% of the whole graph's on 25,000-correspondence k-NN nulls.
 inline constexpr int kBoundPartSize = 2048;
 
 /// An upper bound on omega of the Eq. (1) graph at `eps`, the score bound of the graph solvers
