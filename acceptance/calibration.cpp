@@ -12,9 +12,9 @@
 namespace verifybench {
 
 template <int Dim>
-Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint64_t seed) {
+TargetGroups target_groups(const Correspondences<Dim>& corr) {
   const auto n = static_cast<int>(corr.size());
-  // Group identical target columns: sort indices by coordinates, then number the runs.
+  // Sort indices by coordinates, then number the runs.
   std::vector<int> order(static_cast<std::size_t>(n));
   std::iota(order.begin(), order.end(), 0);
   auto less = [&](int a, int b) {
@@ -24,24 +24,46 @@ Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint
     return a < b;
   };
   std::sort(order.begin(), order.end(), less);
-  std::vector<int> group(static_cast<std::size_t>(n)), first;  // first[g]: a member of group g
+  TargetGroups g;
+  g.group.resize(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k) {
     const int i = order[static_cast<std::size_t>(k)];
     if (k == 0 || corr.target.col(i) != corr.target.col(order[static_cast<std::size_t>(k - 1)])) {
-      first.push_back(i);
+      g.first.push_back(i);
     }
-    group[static_cast<std::size_t>(i)] = static_cast<int>(first.size()) - 1;
+    g.group[static_cast<std::size_t>(i)] = static_cast<int>(g.first.size()) - 1;
   }
-  std::vector<int> image(first.size());
+  return g;
+}
+
+template <int Dim>
+Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, const TargetGroups& groups,
+                                     std::uint64_t seed) {
+  const auto n = static_cast<int>(corr.size());
+  if (groups.group.size() != static_cast<std::size_t>(n)) {
+    throw std::invalid_argument("permute_targets: groups of " +
+                                std::to_string(groups.group.size()) + " correspondences for a set of " +
+                                std::to_string(n));
+  }
+  std::vector<int> image(groups.first.size());
   std::iota(image.begin(), image.end(), 0);
   std::mt19937_64 rng(seed);
   std::shuffle(image.begin(), image.end(), rng);
-  Correspondences<Dim> out = corr;
+  Correspondences<Dim> out;
+  out.source = corr.source;
+  out.score = corr.score;
+  out.prior = corr.prior;
+  out.target.resize(Dim, n);
   for (int i = 0; i < n; ++i) {
-    const int g = image[static_cast<std::size_t>(group[static_cast<std::size_t>(i)])];
-    out.target.col(i) = corr.target.col(first[static_cast<std::size_t>(g)]);
+    const int g = image[static_cast<std::size_t>(groups.group[static_cast<std::size_t>(i)])];
+    out.target.col(i) = corr.target.col(groups.first[static_cast<std::size_t>(g)]);
   }
   return out;
+}
+
+template <int Dim>
+Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint64_t seed) {
+  return permute_targets(corr, target_groups(corr), seed);
 }
 
 template <int Dim>
@@ -53,31 +75,45 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
   SolverParams inner = params;
   inner.accept.rule = AcceptParams::Rule::count;
   Calibration c;
+  // The grouping of the targets (a sort) is the same for every permuted set; a set itself is
+  // rebuilt where it is needed again (an O(n) gather, cheaper than keeping K sets in memory).
+  const TargetGroups groups = target_groups(corr);
   auto null_set = [&](int k) {
-    return permute_targets(corr, derive_seed(params.seed, {kNullStream, std::uint64_t(k)}));
+    return permute_targets(corr, groups, derive_seed(params.seed, {kNullStream, std::uint64_t(k)}));
   };
   // The screen: a bound costs a few small graphs and their core numbers, a null solve a whole
   // search. It is skipped where even bounds of 0 could not accept (the cautious fit's p only grows
-  // with them: 34 at alpha = 0.001); it gives up at the first bound that reaches the observed
-  // score, and once even the plain fit of the bounds keeps p >= alpha (more bounds only narrow
-  // the cautious fit towards it).
+  // with them: 34 at alpha = 0.001). Each level (kScreenPartSizes, coarse first) gives up at the
+  // first bound that reaches the observed score, at a set the solver offers no bound for, or once
+  // even the plain fit of its bounds keeps p >= alpha (more bounds only narrow the cautious fit
+  // towards it); then the next, finer level tries.
   const std::vector<int> zeros(static_cast<std::size_t>(kMinDrawsToAccept), 0);
   if (draws > kMinDrawsToAccept && cautious_fit(zeros).p_value(observed) < alpha) {
-    std::vector<int> bounds;
-    for (int k = 0; k < draws; ++k) {
-      const std::optional<int> b = solver.score_bound(null_set(k), inner);
-      if (!b || *b >= observed) break;
-      bounds.push_back(*b);
-      if (static_cast<int>(bounds.size()) < kMinDrawsToAccept) continue;
-      if (cautious_fit(bounds).p_value(observed) < alpha) {
-        c.null = fit_null(bounds);
-        c.p_value = c.null.p_value(observed);
-        c.threshold = c.null.threshold(alpha);
-        c.screened = true;
-        c.ms = clock.ms();
-        return c;
+    const auto n = static_cast<long long>(corr.size());
+    long long previous_parts = 0;
+    for (const int part_size : kScreenPartSizes) {
+      // Every part is non-empty and bounds at least 1: as many parts as the score cannot pass;
+      // the same split as the level before gives the same bounds.
+      const long long parts = std::max(1LL, (n + part_size - 1) / part_size);
+      if (parts == previous_parts || parts >= observed) continue;
+      previous_parts = parts;
+      std::vector<int> bounds;
+      for (int k = 0; k < draws; ++k) {
+        const std::optional<int> b = solver.score_bound(null_set(k), inner, part_size);
+        if (!b || *b >= observed) break;
+        bounds.push_back(*b);
+        if (static_cast<int>(bounds.size()) < kMinDrawsToAccept) continue;
+        if (cautious_fit(bounds).p_value(observed) < alpha) {
+          c.null = fit_null(bounds);
+          c.p_value = c.null.p_value(observed);
+          c.threshold = c.null.threshold(alpha);
+          c.screened = true;
+          c.screen_part_size = part_size;
+          c.ms = clock.ms();
+          return c;
+        }
+        if (fit_null(bounds).p_value(observed) >= alpha) break;
       }
-      if (fit_null(bounds).p_value(observed) >= alpha) break;
     }
   }
   std::vector<int> scores;
@@ -125,6 +161,9 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
 }
 
 #define VB_INSTANTIATE(D)                                                                  \
+  template TargetGroups target_groups<D>(const Correspondences<D>&);                         \
+  template Correspondences<D> permute_targets<D>(const Correspondences<D>&, const TargetGroups&, \
+                                                 std::uint64_t);                              \
   template Correspondences<D> permute_targets<D>(const Correspondences<D>&, std::uint64_t); \
   template Calibration calibrate<D>(const Solver&, const Correspondences<D>&,               \
                                     const SolverParams&, int);                              \

@@ -18,6 +18,22 @@ namespace verifybench {
 template <int Dim>
 Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint64_t seed);
 
+/// Which correspondences share a target point: the part of permute_targets that is the same for
+/// every seed (a sort), computed once per calibration.
+struct TargetGroups {
+  std::vector<int> group;  ///< per correspondence: its target's group, numbered in sorted order
+  std::vector<int> first;  ///< per group: a correspondence with that target
+};
+
+template <int Dim>
+TargetGroups target_groups(const Correspondences<Dim>& corr);
+
+/// permute_targets with the groups of `corr` computed beforehand (the same set for the same
+/// seed). Throws std::invalid_argument when the groups are not of a set of this size.
+template <int Dim>
+Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, const TargetGroups& groups,
+                                     std::uint64_t seed);
+
 struct Calibration {
   NullFit null;
   double p_value = 1.0;
@@ -26,6 +42,7 @@ struct Calibration {
   /// Accepted by the screen: `null` was fitted to the solver's score bounds on the first
   /// null.draws permuted sets, and no null set was solved.
   bool screened = false;
+  int screen_part_size = 0;  ///< when screened: the bounds' part size (kScreenPartSizes)
   double ms = 0.0;          ///< wall time of the null solves
 };
 
@@ -39,7 +56,8 @@ struct Calibration {
 /// permuted sets (the same sets the draws would solve, at least kMinDrawsToAccept, at most K) are
 /// a null of a statistic that is never below the score, so when even cautious_fit() of the bounds
 /// puts `observed` below alpha the pair is accepted without a null solve (the early accept's test,
-/// on a stochastically larger null); otherwise the draws run as above.
+/// on a stochastically larger null); coarse bounds first, finer ones where they do not settle it
+/// (kScreenPartSizes); otherwise the draws run as above.
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
@@ -51,6 +69,11 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
 template <int Dim>
 void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                        const Calibration& calibration, const SolverParams& params);
+
+/// The screen's levels: score bounds by parts of these many correspondences, coarse (cheap,
+/// loose) first. Parts of 64 cost about n * 32 pair tests, a tenth of parts of 2,048 at n = 12,000,
+/// and bound 5-60% higher (BENCHMARK.md section 22); a clear positive passes at the first level.
+inline constexpr int kScreenPartSizes[] = {64, 2048};
 
 /// Draws before an early accept.
 inline constexpr int kMinDrawsToAccept = 3;

@@ -42,8 +42,9 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
   }
 
   template <int Dim>
-  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
-    return clique_number_bound(corr, params, params.eps);
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params,
+                           int part_size) const {
+    return clique_number_bound(corr, params, params.eps, part_size);
   }
 
  private:

@@ -275,8 +275,9 @@ class JcbbSolver : public SolverBase<JcbbSolver> {
 
   /// H only grows by matches adjacent to all of it in the pair test's graph: a clique there.
   template <int Dim>
-  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
-    return clique_number_bound(corr, params, pair_eps(params));
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params,
+                           int part_size) const {
+    return clique_number_bound(corr, params, pair_eps(params), part_size);
   }
 };
 

@@ -80,8 +80,9 @@ class MacSolver : public SolverBase<MacSolver> {
 
   /// The reported inliers are one motion's consensus (take_consensus_with_refit).
   template <int Dim>
-  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
-    return consensus_bound(corr, params);
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params,
+                           int part_size) const {
+    return consensus_bound(corr, params, part_size);
   }
 };
 

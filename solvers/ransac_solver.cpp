@@ -356,17 +356,19 @@ class RansacSolver : public SolverBase<RansacSolver> {
 
   /// Every variant reports the consensus of one motion (take_consensus_with_refit), so the
   /// consensus bound holds for all; it is offered only where it is cheaper than a null solve. A
-  /// bound costs about n min(n, kBoundPartSize) / 2 pair tests. A null set has no consensus to end
+  /// bound costs about n min(n, part_size) / 2 pair tests. A null set has no consensus to end
   /// an adaptive count, so a null solve runs the whole cap of `iterations` hypotheses, each
   /// counted over the n correspondences, unless the edge-length pre-check rejects the samples
-  /// first (lo-ransac, prosac: their null solves cost a few ms). Offered where
-  /// min(n, kBoundPartSize) <= iterations (a pair test costs about a residual: the whole graph's
-  /// bound broke even near n = 0.6 iterations, BENCHMARK.md section 21).
+  /// first (lo-ransac, prosac: their null solves cost 0.5-3 ms, about what a bound of parts of 64
+  /// costs, BENCHMARK.md section 22). Offered where min(n, part_size) <= iterations (a pair test
+  /// costs about a residual: the whole graph's bound broke even near n = 0.6 iterations, section
+  /// 21).
   template <int Dim>
-  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params) const {
-    const auto part = std::min<Eigen::Index>(corr.size(), kBoundPartSize);
+  std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params,
+                           int part_size) const {
+    const auto part = std::min<Eigen::Index>(corr.size(), part_size);
     if (v_.edge_similarity > 0.0 || part > params.ransac.iterations) return std::nullopt;
-    return consensus_bound(corr, params);
+    return consensus_bound(corr, params, part_size);
   }
 
  private:

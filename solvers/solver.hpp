@@ -53,12 +53,15 @@ class Solver {
   virtual Result<2> solve(const Correspondences<2>& corr, const SolverParams& params) const = 0;
   virtual Result<3> solve(const Correspondences<3>& corr, const SolverParams& params) const = 0;
   /// An upper bound on the score (the selection's size) that `solve` can reach on `corr`, far
-  /// cheaper than solving; nullopt when the solver has none. The calibrated rule screens the
-  /// permuted sets with it before it solves them (calibration.hpp).
-  virtual std::optional<int> score_bound(const Correspondences<2>& corr,
-                                         const SolverParams& params) const = 0;
-  virtual std::optional<int> score_bound(const Correspondences<3>& corr,
-                                         const SolverParams& params) const = 0;
+  /// cheaper than solving; nullopt when the solver has none, or none at this resolution worth
+  /// its cost. `part_size`: the bounds split the set into parts of about this many
+  /// correspondences and add up the parts' bounds (clique_number_bound): smaller parts cost less
+  /// and bound more loosely. The calibrated rule screens the permuted sets with it before it
+  /// solves them, coarse parts first (calibration.hpp).
+  virtual std::optional<int> score_bound(const Correspondences<2>& corr, const SolverParams& params,
+                                         int part_size) const = 0;
+  virtual std::optional<int> score_bound(const Correspondences<3>& corr, const SolverParams& params,
+                                         int part_size) const = 0;
 };
 
 /// Implements both virtual entry points with one template `Derived::run<Dim>`, so hot loops are
@@ -72,29 +75,30 @@ class SolverBase : public Solver {
   Result<3> solve(const Correspondences<3>& corr, const SolverParams& params) const override {
     return guarded<3>(corr, params);
   }
-  std::optional<int> score_bound(const Correspondences<2>& corr,
-                                 const SolverParams& params) const override {
-    return guarded_bound<2>(corr, params);
+  std::optional<int> score_bound(const Correspondences<2>& corr, const SolverParams& params,
+                                 int part_size) const override {
+    return guarded_bound<2>(corr, params, part_size);
   }
-  std::optional<int> score_bound(const Correspondences<3>& corr,
-                                 const SolverParams& params) const override {
-    return guarded_bound<3>(corr, params);
+  std::optional<int> score_bound(const Correspondences<3>& corr, const SolverParams& params,
+                                 int part_size) const override {
+    return guarded_bound<3>(corr, params, part_size);
   }
 
   /// No bound; a solver that has one declares its own `bound<Dim>`, which hides this one.
   template <int Dim>
-  std::optional<int> bound(const Correspondences<Dim>&, const SolverParams&) const {
+  std::optional<int> bound(const Correspondences<Dim>&, const SolverParams&, int) const {
     return std::nullopt;
   }
 
  private:
   template <int Dim>
-  std::optional<int> guarded_bound(const Correspondences<Dim>& corr,
-                                   const SolverParams& params) const {
+  std::optional<int> guarded_bound(const Correspondences<Dim>& corr, const SolverParams& params,
+                                   int part_size) const {
     try {
+      if (part_size < 1) return std::nullopt;
       params.validate();
       validate(corr);
-      return static_cast<const Derived&>(*this).template bound<Dim>(corr, params);
+      return static_cast<const Derived&>(*this).template bound<Dim>(corr, params, part_size);
     } catch (const std::exception&) {
       return std::nullopt;  // no screen; the solve itself reports the problem
     }

@@ -85,8 +85,9 @@ std::optional<int> clique_number_bound(const Correspondences<Dim>& corr, const S
 /// the triangle inequality. So the consensus solvers' (ransac, mac) score is bounded as the
 /// clique's is, on that graph (widened by 1e-9 against rounding).
 template <int Dim>
-std::optional<int> consensus_bound(const Correspondences<Dim>& corr, const SolverParams& params) {
-  return clique_number_bound(corr, params, 2.0 * params.inlier_threshold * (1.0 + 1e-9));
+std::optional<int> consensus_bound(const Correspondences<Dim>& corr, const SolverParams& params,
+                                   int part_size = kBoundPartSize) {
+  return clique_number_bound(corr, params, 2.0 * params.inlier_threshold * (1.0 + 1e-9), part_size);
 }
 
 }  // namespace verifybench
