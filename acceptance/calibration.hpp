@@ -72,7 +72,7 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
 
 /// The screen's levels: score bounds by parts of these many correspondences, coarse (cheap,
 /// loose) first. Parts of 64 cost about n * 32 pair tests, a tenth of parts of 2,048 at n = 12,000,
-/// and bound 5-60% higher (BENCHMARK.md section 22); a clear positive passes at the first level.
+/// and bound 1.1-1.8 x as high (BENCHMARK.md section 22); a clear positive passes at the first level.
 inline constexpr int kScreenPartSizes[] = {64, 2048};
 
 /// Draws before an early accept.
