@@ -6,6 +6,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/parallel.hpp"
+#include "graph/bitgraph.hpp"
 #include "core/random.hpp"
 #include "core/timer.hpp"
 
@@ -116,13 +118,28 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
       }
     }
   }
-  std::vector<int> scores;
-  // One draw after another (peers fork, which a thread pool would make unsafe); each solve still
-  // uses params.threads for its own parallel parts.
-  for (int k = 0; k < draws; ++k) {
+  // The draws: one after another, each solve using params.threads for its own parallel parts;
+  // or, for a solver that may solve several sets at once (Solver::solves_concurrently: not the
+  // peers, which fork or run OpenMP), `threads` draws at a time on one thread each (fewer where
+  // that many graphs would pass max_graph_bytes). A batch's
+  // scores are taken in draw order and the ones past an early stop are dropped, so the result is
+  // that of the one-by-one loop for any thread count.
+  // At most as many at once as graphs of this size fit in the memory one solve may use.
+  const auto fit = static_cast<long long>(params.max_graph_bytes /
+                                          std::max<std::size_t>(1, BitGraph::bytes_for(corr.size())));
+  const int workers = solver.solves_concurrently()
+                          ? static_cast<int>(std::max(1LL, std::min<long long>(
+                                {resolve_threads(params.threads), draws, fit})))
+                          : 1;
+  auto draw_params = [&](int k) {
     SolverParams p = inner;
     p.seed = derive_seed(derive_seed(params.seed, {kNullStream, std::uint64_t(k)}), {1});
-    const Result<Dim> r = solver.solve(null_set(k), p);
+    if (workers > 1) p.threads = 1;
+    return p;
+  };
+  std::vector<int> scores;
+  // Takes draw k's result; true when the decision of all K draws is known.
+  auto take = [&](int k, const Result<Dim>& r) {
     if (r.status == Status::error) {
       throw std::runtime_error("null model: permuted set " + std::to_string(k) +
                                " failed: " + r.message);
@@ -134,13 +151,28 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
     }
     scores.push_back(score);
     const int done = k + 1;
-    if (done < 2) continue;
+    if (done < 2) return false;
     // Early stops that cannot change the decision of all K draws: a draw that reaches the
     // observed score keeps p >= 2 / (K + 1) (the permutation floor of p_value) ...
-    if (score >= observed && 2.0 / (draws + 1.0) >= alpha) break;
+    if (score >= observed && 2.0 / (draws + 1.0) >= alpha) return true;
     // ... and a score beyond every draw, rejected even by a cautious fit of the draws so far.
-    if (done >= kMinDrawsToAccept && done < draws && cautious_fit(scores).p_value(observed) < alpha) {
-      break;
+    return done >= kMinDrawsToAccept && done < draws &&
+           cautious_fit(scores).p_value(observed) < alpha;
+  };
+  if (workers <= 1) {
+    for (int k = 0; k < draws; ++k) {
+      if (take(k, solver.solve(null_set(k), draw_params(k)))) break;
+    }
+  } else {
+    WorkerPool pool(workers);
+    std::vector<Result<Dim>> batch(static_cast<std::size_t>(workers));
+    bool stop = false;
+    for (int first = 0; first < draws && !stop; first += workers) {
+      const int count = std::min(workers, draws - first);
+      pool.parallel_for(count, [&](int j) {
+        batch[static_cast<std::size_t>(j)] = solver.solve(null_set(first + j), draw_params(first + j));
+      });
+      for (int j = 0; j < count && !stop; ++j) stop = take(first + j, batch[static_cast<std::size_t>(j)]);
     }
   }
   c.null = fit_null(scores);

@@ -57,7 +57,8 @@ struct Calibration {
 /// a null of a statistic that is never below the score, so when even cautious_fit() of the bounds
 /// puts `observed` below alpha the pair is accepted without a null solve (the early accept's test,
 /// on a stochastically larger null); coarse bounds first, finer ones where they do not settle it
-/// (kScreenPartSizes); otherwise the draws run as above.
+/// (kScreenPartSizes); otherwise the draws run as above, resolve_threads(params.threads) at a
+/// time on one thread each when the solver solves_concurrently() (the same result for any count).
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,

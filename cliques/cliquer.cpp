@@ -31,7 +31,7 @@ CliqueSearchResult run_cliquer(const BitGraph& g, const CliqueSearchParams& p) {
 void register_cliquer() {
   CliqueAlgorithms::add({"cliquer",
                          "peer: Debian libcliquer 1.21 (Ostergard), default options, via a C shim",
-                         true, run_cliquer});
+                         true, run_cliquer, /*child_process=*/true});
 }
 
 }  // namespace verifybench

@@ -53,7 +53,8 @@ CliqueSearchResult run_igraph(const BitGraph& g, const CliqueSearchParams& p) {
 
 void register_igraph() {
   CliqueAlgorithms::add(
-      {"igraph", "peer: Debian libigraph 0.10 igraph_largest_cliques", true, run_igraph});
+      {"igraph", "peer: Debian libigraph 0.10 igraph_largest_cliques", true, run_igraph,
+       /*child_process=*/true});
 }
 
 }  // namespace verifybench

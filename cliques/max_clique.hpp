@@ -50,6 +50,7 @@ struct CliqueAlgorithmInfo {
   std::string description;
   bool exact = true;  ///< proves optimality when it finishes
   CliqueAlgorithm run;
+  bool child_process = false;  ///< searches in a forked child (the library peers)
 };
 
 class CliqueAlgorithms {

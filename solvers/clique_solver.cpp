@@ -13,7 +13,10 @@ namespace {
 
 class CliqueSolver : public SolverBase<CliqueSolver> {
  public:
-  explicit CliqueSolver(CliqueAlgorithm algorithm) : algorithm_(std::move(algorithm)) {}
+  CliqueSolver(CliqueAlgorithm algorithm, bool concurrent)
+      : algorithm_(std::move(algorithm)), concurrent_(concurrent) {}
+  /// Not for the peer algorithms that search in a child process (cliquer, igraph).
+  bool solves_concurrently() const override { return concurrent_; }
 
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
@@ -49,6 +52,7 @@ class CliqueSolver : public SolverBase<CliqueSolver> {
 
  private:
   CliqueAlgorithm algorithm_;
+  bool concurrent_;
 };
 
 }  // namespace
@@ -60,11 +64,15 @@ void register_clique_solvers() {
       {"clique",
        "CliReg: exact maximum clique (" + default_algorithm.name +
            ") on the pairwise-distance graph of Eq. (1), then least-squares fit",
-       [run = default_algorithm.run] { return std::make_unique<CliqueSolver>(run); }});
+       [run = default_algorithm.run, child = default_algorithm.child_process] {
+         return std::make_unique<CliqueSolver>(run, !child);
+       }});
   for (const CliqueAlgorithmInfo& info : CliqueAlgorithms::list()) {
     SolverRegistry::add({"clique-" + info.name,
                          "Eq. (1) graph, then " + info.description + ", then fit",
-                         [run = info.run] { return std::make_unique<CliqueSolver>(run); }});
+                         [run = info.run, child = info.child_process] {
+                           return std::make_unique<CliqueSolver>(run, !child);
+                         }});
   }
 }
 

@@ -249,6 +249,8 @@ double pair_eps(const SolverParams& params) {
 
 class JcbbSolver : public SolverBase<JcbbSolver> {
  public:
+  bool solves_concurrently() const override { return true; }
+
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;

@@ -19,6 +19,8 @@ namespace {
 
 class MacSolver : public SolverBase<MacSolver> {
  public:
+  bool solves_concurrently() const override { return true; }
+
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
     Result<Dim> result;

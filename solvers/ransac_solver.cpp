@@ -346,6 +346,7 @@ class Engine {
 class RansacSolver : public SolverBase<RansacSolver> {
  public:
   explicit RansacSolver(Variant v) : v_(v) {}
+  bool solves_concurrently() const override { return true; }
 
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {

@@ -62,6 +62,10 @@ class Solver {
                                          int part_size) const = 0;
   virtual std::optional<int> score_bound(const Correspondences<3>& corr, const SolverParams& params,
                                          int part_size) const = 0;
+  /// Whether several `solve` calls may run at once on different threads (no child processes, no
+  /// state shared between calls); the calibrated rule then solves its null sets in parallel
+  /// (calibration.hpp). Peers that fork or run OpenMP keep the default, no.
+  virtual bool solves_concurrently() const { return false; }
 };
 
 /// Implements both virtual entry points with one template `Derived::run<Dim>`, so hot loops are

@@ -16,6 +16,7 @@
 #include "core/random.hpp"
 #include "datasets/dump_format.hpp"
 #include "generators/synthetic.hpp"
+#include "graph/bitgraph.hpp"
 #include "harness/builtin.hpp"
 #include "harness/harness.hpp"
 #include "reports/report.hpp"
@@ -200,6 +201,17 @@ void expect_early_stops_give_the_decision_of_all_draws(const std::string& name) 
     const Calibration c = calibrate(*solver, set.corr, params, observed);
     expect_the_decision_of_all_draws(*solver, set.corr, params, observed, c,
                                      name + " seed " + std::to_string(seed));
+    // Draws 3 at a time (the solver's solves_concurrently): the same draws, stops and scores.
+    SolverParams threaded = params;
+    threaded.threads = 3;
+    const Calibration c3 = calibrate(*solver, set.corr, threaded, observed);
+    EXPECT_EQ(c3.null.scores, c.null.scores) << name << " seed " << seed;
+    EXPECT_EQ(c3.p_value, c.p_value) << name << " seed " << seed;
+    EXPECT_EQ(c3.screened, c.screened) << name << " seed " << seed;
+    EXPECT_EQ(c3.limited_draws, c.limited_draws) << name << " seed " << seed;
+    threaded.max_graph_bytes = BitGraph::bytes_for(set.corr.size());  // room for one graph at once
+    EXPECT_EQ(calibrate(*solver, set.corr, threaded, observed).null.scores, c.null.scores)
+        << name << " seed " << seed;
     early += c.null.draws < params.accept.null_draws;
     accepted += c.p_value < params.accept.alpha;
     screened += c.screened;
@@ -213,6 +225,16 @@ void expect_early_stops_give_the_decision_of_all_draws(const std::string& name) 
 TEST(Calibration, EarlyStopsAndTheScreenGiveTheDecisionOfAllDraws) {
   for (const char* name : {"clique", "ransac", "mac"}) {
     expect_early_stops_give_the_decision_of_all_draws(name);
+  }
+}
+
+TEST(Calibration, OnlySolversThatForkNothingSolveNullSetsConcurrently) {
+  // The peers search in a forked child (cliquer, igraph) or in libraries with their own threads
+  // (PCL, Open3D): their null solves stay one after another.
+  for (const SolverInfo& info : SolverRegistry::list()) {
+    const bool peer = info.name.rfind("pcl-", 0) == 0 || info.name.rfind("open3d-", 0) == 0 ||
+                      info.name == "clique-cliquer" || info.name == "clique-igraph";
+    EXPECT_EQ(SolverRegistry::create(info.name)->solves_concurrently(), !peer) << info.name;
   }
 }
 
