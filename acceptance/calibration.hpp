@@ -72,9 +72,11 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                        const Calibration& calibration, const SolverParams& params);
 
 /// The screen's levels: score bounds by parts of these many correspondences, coarse (cheap,
-/// loose) first. Parts of 64 cost about n * 32 pair tests, a tenth of parts of 2,048 at n = 12,000,
-/// and bound 1.1-1.8 x as high (BENCHMARK.md section 22); a clear positive passes at the first level.
-inline constexpr int kScreenPartSizes[] = {64, 2048};
+/// loose) first. Parts of up to 64 are solved exactly on one word per row (clique_number_bound):
+/// parts of 8 cost about n * 4 pair tests and bound near n / 4, parts of 64 about n * 32 and near
+/// n / 15 on the corpus' nulls; parts of 2,048 a tenth of the whole graph at n = 12,000 (BENCHMARK.md
+/// sections 22 and 24). A clear positive passes at the first level that is below it.
+inline constexpr int kScreenPartSizes[] = {8, 16, 64, 2048};
 
 /// Draws before an early accept.
 inline constexpr int kMinDrawsToAccept = 3;

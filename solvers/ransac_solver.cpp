@@ -343,6 +343,9 @@ class Engine {
   int counted_pool_ = -1;        ///< pool size of the last adaptive count
 };
 
+/// The largest parts the edge-checking variants bound by (RansacSolver::bound).
+constexpr int kEdgeCheckBoundPart = 16;
+
 class RansacSolver : public SolverBase<RansacSolver> {
  public:
   explicit RansacSolver(Variant v) : v_(v) {}
@@ -359,16 +362,18 @@ class RansacSolver : public SolverBase<RansacSolver> {
   /// consensus bound holds for all; it is offered only where it is cheaper than a null solve. A
   /// bound costs about n min(n, part_size) / 2 pair tests. A null set has no consensus to end
   /// an adaptive count, so a null solve runs the whole cap of `iterations` hypotheses, each
-  /// counted over the n correspondences, unless the edge-length pre-check rejects the samples
-  /// first (lo-ransac, prosac: their null solves cost 0.5-3 ms, about what a bound of parts of 64
-  /// costs, BENCHMARK.md section 22). Offered where min(n, part_size) <= iterations (a pair test
-  /// costs about a residual: the whole graph's bound broke even near n = 0.6 iterations, section
-  /// 21).
+  /// counted over the n correspondences: offered where min(n, part_size) <= iterations (a pair
+  /// test costs about a residual: the whole graph's bound broke even near n = 0.6 iterations,
+  /// BENCHMARK.md section 21). Where the edge-length pre-check rejects most samples first
+  /// (lo-ransac, prosac) a null solve costs 0.5-3 ms, and only parts of up to
+  /// kEdgeCheckBoundPart are cheaper: a third to a fifth of a null solve (section 24).
   template <int Dim>
   std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params,
                            int part_size) const {
     const auto part = std::min<Eigen::Index>(corr.size(), part_size);
-    if (v_.edge_similarity > 0.0 || part > params.ransac.iterations) return std::nullopt;
+    if (part > (v_.edge_similarity > 0.0 ? kEdgeCheckBoundPart : params.ransac.iterations)) {
+      return std::nullopt;
+    }
     return consensus_bound(corr, params, part_size);
   }
 

@@ -239,25 +239,26 @@ TEST(Calibration, OnlySolversThatForkNothingSolveNullSetsConcurrently) {
 }
 
 TEST(Calibration, TheScreensFinerLevelDecidesWhatCoarseBoundsCannot) {
-  // n = 1000 at eps 0.3: on the null sets, bounds by parts of 64 are about 64 and the whole
-  // graph's about 49, so 90 inliers pass the screen at its first level and 65 only at its second.
+  // n = 1000 at eps 0.3: on the null sets, bounds by parts of 8 are about 235, by parts of 16
+  // about 135 and by parts of 64 about 50, so 400 inliers pass the screen at its first level and
+  // 90 only at parts of 64 (both below every bound by parts of 8, and 90 below those of 16).
   const auto solver = SolverRegistry::create("clique");
   SolverParams params;
   params.eps = 0.3;
   params.accept.null_draws = 12;
-  int levels[2] = {0, 0};
+  int coarse = 0, fine = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
-    const LabeledSet<3> set = draw<3>(1000, seed % 2 == 1 ? 0.91 : 0.935, seed);
+    const LabeledSet<3> set = draw<3>(1000, seed % 2 == 1 ? 0.6 : 0.91, seed);
     params.seed = derive_seed(seed, {9});
     const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
     const Calibration c = calibrate(*solver, set.corr, params, observed);
     expect_the_decision_of_all_draws(*solver, set.corr, params, observed, c,
                                      "seed " + std::to_string(seed));
-    levels[0] += c.screen_part_size == kScreenPartSizes[0];
-    levels[1] += c.screen_part_size == kScreenPartSizes[1];
+    coarse += c.screened && c.screen_part_size == 8;
+    fine += c.screened && c.screen_part_size == 64;
   }
-  EXPECT_EQ(levels[0], 4);  // the 90s by coarse bounds
-  EXPECT_EQ(levels[1], 4);  // the 65s by fine ones
+  EXPECT_EQ(coarse, 4);  // the 400s by parts of 8
+  EXPECT_EQ(fine, 4);    // the 90s by parts of 64
 }
 
 /// The largest clique of Eq. (1)'s graph at eps, by enumerating every subset (n <= 16).
@@ -310,9 +311,11 @@ TEST(ScoreBound, NeverBelowTheCliqueNumberOrAnyScoreAndExactOnAllInliers) {
   params.inlier_threshold = 0.2;
   params.ransac.iterations = 400;
   for (const char* name :
-       {"clique", "clique-bbmc", "ransac", "ransac-adaptive", "msac", "mac", "jcbb"}) {
+       {"clique", "clique-bbmc", "ransac", "ransac-adaptive", "msac", "lo-ransac", "prosac", "mac",
+        "jcbb"}) {
     const auto solver = SolverRegistry::create(name);
     const bool consensus = std::string(name).find("clique") == std::string::npos;
+    const bool edge_check = std::string(name) == "lo-ransac" || std::string(name) == "prosac";
     // jcbb's sets are cliques of its pair test's graph: eps = 2 sigma sqrt(chi2(1, 0.95)), sigma
     // = t / 3 by default.
     const double graph_eps =
@@ -324,24 +327,29 @@ TEST(ScoreBound, NeverBelowTheCliqueNumberOrAnyScoreAndExactOnAllInliers) {
       const int omega = brute_force_omega(set.corr, graph_eps);
       params.seed = seed;
       const auto score = static_cast<int>(solver->solve(set.corr, params).inliers.size());
-      for (int part_size : {kBoundPartSize, 64, 5}) {  // whole set, and parts of 5 (4 of them)
+      for (int part_size : {kBoundPartSize, 64, 16, 8, 5}) {  // whole set (n = 16), parts of 8 and 5
         const std::optional<int> bound = solver->score_bound(set.corr, params, part_size);
         ASSERT_TRUE(bound.has_value()) << name;
         EXPECT_GE(*bound, omega) << name << " seed " << seed << " part size " << part_size;
         EXPECT_LE(score, *bound) << name << " seed " << seed << " part size " << part_size;
       }
       const LabeledSet<3> big = draw<3>(200, 0.0, seed);  // noise far below the tolerances
-      EXPECT_EQ(solver->score_bound(big.corr, params, kBoundPartSize), 200) << name;
-      EXPECT_EQ(solver->score_bound(big.corr, params, 64), 200) << name;
+      for (int part_size : {kBoundPartSize, 64, 8}) {
+        if (edge_check && part_size > 16) continue;  // not offered (below)
+        EXPECT_EQ(solver->score_bound(big.corr, params, part_size), 200) << name << " " << part_size;
+      }
     }
   }
-  // A solver without a bound says so: the RANSACs where a null solve is the cheaper (an
-  // edge-length pre-check, or parts larger than the iterations). A bad set gives none (the solve
-  // reports it).
+  // A solver without a bound says so: the RANSACs where a null solve is the cheaper (with the
+  // edge-length pre-check, parts over 16; without, parts larger than the iterations). A bad set
+  // gives none (the solve reports it).
   const auto ransac = SolverRegistry::create("ransac");
-  for (int part_size : {kBoundPartSize, 64, 4}) {
-    EXPECT_FALSE(SolverRegistry::create("lo-ransac")->score_bound(draw<3>(16, 0.5, 1).corr, params,
-                                                                  part_size));
+  for (const char* name : {"lo-ransac", "prosac"}) {
+    const auto solver = SolverRegistry::create(name);
+    const Correspondences<3> corr = draw<3>(100, 0.5, 1).corr;
+    for (int part_size : {kBoundPartSize, 64, 17}) EXPECT_FALSE(solver->score_bound(corr, params, part_size));
+    for (int part_size : {16, 8}) EXPECT_TRUE(solver->score_bound(corr, params, part_size));
+    EXPECT_TRUE(solver->score_bound(draw<3>(16, 0.5, 1).corr, params, kBoundPartSize));  // n = 16
   }
   EXPECT_FALSE(ransac->score_bound(draw<3>(401, 0.5, 1).corr, params, kBoundPartSize));
   EXPECT_TRUE(ransac->score_bound(draw<3>(400, 0.5, 1).corr, params, kBoundPartSize));

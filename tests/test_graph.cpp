@@ -7,6 +7,8 @@
 #include "core/parallel.hpp"
 #include "generators/synthetic.hpp"
 #include "graph/compatibility_graph.hpp"
+#include "graph/small_graph.hpp"
+#include "test_util.hpp"
 
 namespace verifybench {
 namespace {
@@ -164,6 +166,94 @@ TEST(CompatibilityGraph, RejectsNonPositiveEps) {
   c.target = c.source;
   EXPECT_THROW(build_compatibility_graph(c, GraphParams{0.0}), std::invalid_argument);
   EXPECT_THROW(build_compatibility_graph(c, GraphParams{-1.0}), std::invalid_argument);
+}
+
+/// Eq. (1) for one pair, as the tests above evaluate it.
+template <int Dim>
+bool definition(const Correspondences<Dim>& c, int i, int j, double eps) {
+  return std::abs((c.source.col(i) - c.source.col(j)).norm() -
+                  (c.target.col(i) - c.target.col(j)).norm()) < eps;
+}
+
+template <int Dim>
+void check_small_graphs_against_definition(std::uint64_t seed) {
+  // Every part size the screen uses, strided as clique_number_bound strides them, far from the
+  // origin; and eps at a pair's own gap (strictly-less fails) and one ulp above (passes).
+  SyntheticParams p;
+  p.n = 300;
+  p.outlier_ratio = 0.6;
+  p.extent = 500.0;
+  p.seed = seed;
+  auto set = make_synthetic<Dim>(p);
+  set.corr.source.array() += 3000.0;
+  std::vector<double> eps_values = {0.4, 2.0};
+  for (int k = 0; k < 6; ++k) {
+    const double gap = std::abs((set.corr.source.col(k) - set.corr.source.col(k + 7)).norm() -
+                                (set.corr.target.col(k) - set.corr.target.col(k + 7)).norm());
+    eps_values.push_back(gap);
+    eps_values.push_back(std::nextafter(gap, 1e300));
+  }
+  for (int size : {1, 2, 5, 8, 16, 63, 64}) {
+    const int parts = (p.n + size - 1) / size;
+    for (int q = 0; q < std::min(parts, 8); ++q) {
+      int index[64], count = 0;
+      for (int i = q; i < p.n && count < size; i += parts) index[count++] = i;
+      for (int k = 0; k < 6 && size == 8 && q == 0; ++k) {  // the pairs at eps in one part
+        index[2 * (k % 4)] = k;
+        index[2 * (k % 4) + 1] = k + 7;
+      }
+      for (double eps : eps_values) {
+        const SmallGraph g = small_compatibility_graph(set.corr, index, count, eps);
+        ASSERT_EQ(g.n, count);
+        for (int a = 0; a < count; ++a) {
+          EXPECT_FALSE((g.row[a] >> a) & 1);
+          for (int b = 0; b < count; ++b) {
+            if (a == b) continue;
+            ASSERT_EQ((g.row[a] >> b) & 1,
+                      definition(set.corr, index[a], index[b], eps) ? 1u : 0u)
+                << "size " << size << " eps " << eps << " pair " << index[a] << "," << index[b];
+          }
+        }
+      }
+    }
+  }
+  int index[65] = {};
+  EXPECT_THROW(small_compatibility_graph(set.corr, index, 65, 0.4), std::invalid_argument);
+}
+
+TEST(SmallGraph, MatchesDefinition2D) { check_small_graphs_against_definition<2>(3); }
+TEST(SmallGraph, MatchesDefinition3D) { check_small_graphs_against_definition<3>(4); }
+
+SmallGraph to_small(const BitGraph& g) {
+  SmallGraph s;
+  s.n = g.size();
+  for (int v = 0; v < g.size(); ++v) s.row[v] = g.row(v)[0];
+  return s;
+}
+
+TEST(SmallGraph, CliqueNumberMatchesBruteForceAndPlantedCliques) {
+  // Oracles: exhaustive search up to 24 vertices at every density; at 64 vertices a planted
+  // clique of 20 in a sparse graph (whose own cliques stay far below 20), and the extremes.
+  std::mt19937_64 rng(11);
+  for (int n : {0, 1, 2, 7, 16, 24}) {
+    for (double density : {0.05, 0.3, 0.6, 0.9}) {
+      for (int rep = 0; rep < 5; ++rep) {
+        const BitGraph g = test::random_graph(n, density, rng);
+        EXPECT_EQ(small_clique_number(to_small(g)), test::brute_force_clique_number(g))
+            << n << " " << density << " " << rep;
+      }
+    }
+  }
+  for (int rep = 0; rep < 10; ++rep) {
+    BitGraph g = test::random_graph(64, 0.1, rng);
+    test::plant_clique(g, 20, rng);
+    EXPECT_EQ(small_clique_number(to_small(g)), 20) << rep;
+  }
+  BitGraph complete(64), empty(64);
+  for (int u = 0; u < 64; ++u)
+    for (int v = u + 1; v < 64; ++v) complete.add_edge(u, v);
+  EXPECT_EQ(small_clique_number(to_small(complete)), 64);
+  EXPECT_EQ(small_clique_number(to_small(empty)), 1);
 }
 
 }  // namespace
