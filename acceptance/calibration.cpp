@@ -1,6 +1,7 @@
 #include "acceptance/calibration.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 #include <optional>
 #include <random>
@@ -16,24 +17,30 @@ namespace verifybench {
 template <int Dim>
 TargetGroups target_groups(const Correspondences<Dim>& corr) {
   const auto n = static_cast<int>(corr.size());
-  // Sort indices by coordinates, then number the runs.
-  std::vector<int> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), 0);
-  auto less = [&](int a, int b) {
-    for (int d = 0; d < Dim; ++d) {
-      if (corr.target(d, a) != corr.target(d, b)) return corr.target(d, a) < corr.target(d, b);
-    }
-    return a < b;
-  };
-  std::sort(order.begin(), order.end(), less);
+  // A hash table on the exact coordinates (open addressing, -0 hashed as +0, which compares
+  // equal): O(n), where the sort it replaces took half of a screened calibration at n = 15,000.
+  std::size_t mask = 15;
+  while (mask < 2 * static_cast<std::size_t>(n)) mask = 2 * mask + 1;
+  std::vector<int> slot(mask + 1, -1);  // a group, or -1
   TargetGroups g;
   g.group.resize(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const int i = order[static_cast<std::size_t>(k)];
-    if (k == 0 || corr.target.col(i) != corr.target.col(order[static_cast<std::size_t>(k - 1)])) {
+  for (int i = 0; i < n; ++i) {
+    std::uint64_t h = 0;
+    for (int d = 0; d < Dim; ++d) {
+      const double x = corr.target(d, i) + 0.0;
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, sizeof bits);
+      h = mix_seed(h ^ bits);
+    }
+    std::size_t s = h & mask;
+    while (slot[s] >= 0 && corr.target.col(g.first[static_cast<std::size_t>(slot[s])]) != corr.target.col(i)) {
+      s = (s + 1) & mask;
+    }
+    if (slot[s] < 0) {
+      slot[s] = static_cast<int>(g.first.size());
       g.first.push_back(i);
     }
-    g.group[static_cast<std::size_t>(i)] = static_cast<int>(g.first.size()) - 1;
+    g.group[static_cast<std::size_t>(i)] = slot[s];
   }
   return g;
 }

@@ -19,10 +19,10 @@ template <int Dim>
 Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint64_t seed);
 
 /// Which correspondences share a target point: the part of permute_targets that is the same for
-/// every seed (a sort), computed once per calibration.
+/// every seed (a hash table), computed once per calibration.
 struct TargetGroups {
-  std::vector<int> group;  ///< per correspondence: its target's group, numbered in sorted order
-  std::vector<int> first;  ///< per group: a correspondence with that target
+  std::vector<int> group;  ///< per correspondence: its target's group, numbered by first appearance
+  std::vector<int> first;  ///< per group: its first correspondence
 };
 
 template <int Dim>

@@ -113,6 +113,17 @@ TEST(Permutation, KeepsEveryTargetAndWhichCorrespondencesShareOne) {
   shorter.source.conservativeResize(3, 119);
   shorter.target.conservativeResize(3, 119);
   EXPECT_THROW(permute_targets(shorter, groups, 42), std::invalid_argument);
+  // A group is one point: equal coordinates (-0 equals +0) share it, and every member of a group
+  // has its point.
+  Correspondences<3> signed_zero = c;
+  signed_zero.target.col(7) = Eigen::Vector3d(0.0, 1.0, 2.0);
+  signed_zero.target.col(9) = Eigen::Vector3d(-0.0, 1.0, 2.0);
+  const TargetGroups zg = target_groups(signed_zero);
+  EXPECT_EQ(zg.group[7], zg.group[9]);
+  for (int i = 0; i < 120; ++i) {
+    const int first = zg.first[static_cast<std::size_t>(zg.group[static_cast<std::size_t>(i)])];
+    ASSERT_EQ(signed_zero.target.col(first), signed_zero.target.col(i)) << i;
+  }
 }
 
 TEST(NullModel, FittedTailFollowsAKnownGumbelLaw) {
