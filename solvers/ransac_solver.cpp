@@ -365,8 +365,9 @@ class RansacSolver : public SolverBase<RansacSolver> {
   /// counted over the n correspondences: offered where min(n, part_size) <= iterations (a pair
   /// test costs about a residual: the whole graph's bound broke even near n = 0.6 iterations,
   /// BENCHMARK.md section 21). Where the edge-length pre-check rejects most samples first
-  /// (lo-ransac, prosac) a null solve costs 0.5-3 ms, and only parts of up to
-  /// kEdgeCheckBoundPart are cheaper: a third to a fifth of a null solve (section 24).
+  /// (lo-ransac, prosac) a null solve costs 0.5-4 ms, and only parts of up to
+  /// kEdgeCheckBoundPart are clearly cheaper: a third to a twenty-fifth of a null solve,
+  /// where parts of 64 cost up to nine tenths of one (section 24).
   template <int Dim>
   std::optional<int> bound(const Correspondences<Dim>& corr, const SolverParams& params,
                            int part_size) const {

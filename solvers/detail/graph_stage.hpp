@@ -48,12 +48,12 @@ inline constexpr int kBoundPartSize = 2048;
 /// An upper bound on omega of the Eq. (1) graph at `eps`, the score bound of the graph solvers
 /// (Solver::score_bound): split the correspondences into parts (i mod parts), and add up a bound
 /// of each part's clique number; a clique's vertices in one part are a clique of that part. Parts
-/// of up to 64 are solved exactly on one word per row (small_graph.hpp: 7-30% below the cores'
-/// bound, and no allocation); larger ones are bounded by their max core number + 1 (a clique of k
-/// vertices lies in the (k - 1)-core). The parts' graphs cost n^2 / parts pair tests; on
-/// random-like graphs core numbers scale with the vertex count, so the sum stays close to the
-/// whole graph's bound (BENCHMARK.md section 21: 541 ms -> 36 ms, bound 747 -> 755, on a
-/// 25,000-correspondence null). nullopt when the time limit passes.
+/// of up to 64 are solved exactly on one word per row (small_graph.hpp: at parts of 64, 8-29%
+/// below the cores' bound, and no allocation); larger ones are bounded by their max core
+/// number + 1 (a clique of k vertices lies in the (k - 1)-core). The parts' graphs cost
+/// n^2 / parts pair tests; on random-like graphs core numbers scale with the vertex count, so the
+/// sum stays close to the whole graph's bound (BENCHMARK.md section 21: 541 ms -> 36 ms, bound
+/// 747 -> 755, on a 25,000-correspondence null). nullopt when the time limit passes.
 template <int Dim>
 std::optional<int> clique_number_bound(const Correspondences<Dim>& corr, const SolverParams& params,
                                        double eps, int part_size = kBoundPartSize) {
