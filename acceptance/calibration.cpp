@@ -75,6 +75,19 @@ Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint
   return permute_targets(corr, target_groups(corr), seed);
 }
 
+namespace {
+
+/// The null fitted to `scores` (draws, or bounds when screened), and `observed` scored against it.
+void fit_and_score(Calibration& c, const std::vector<int>& scores, int observed, double alpha) {
+  c.null = fit_null(scores);
+  c.p_value = c.null.p_value(observed);
+  c.p_value_low = optimistic_fit(scores).p_value(observed);
+  c.p_value_high = cautious_fit(scores).p_value(observed);
+  c.threshold = c.null.threshold(alpha);
+}
+
+}  // namespace
+
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                       const SolverParams& params, int observed) {
@@ -113,9 +126,7 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
         bounds.push_back(*b);
         if (static_cast<int>(bounds.size()) < kMinDrawsToAccept) continue;
         if (cautious_fit(bounds).p_value(observed) < alpha) {
-          c.null = fit_null(bounds);
-          c.p_value = c.null.p_value(observed);
-          c.threshold = c.null.threshold(alpha);
+          fit_and_score(c, bounds, observed, alpha);
           c.screened = true;
           c.screen_part_size = part_size;
           c.ms = clock.ms();
@@ -182,9 +193,7 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
       for (int j = 0; j < count && !stop; ++j) stop = take(first + j, batch[static_cast<std::size_t>(j)]);
     }
   }
-  c.null = fit_null(scores);
-  c.p_value = c.null.p_value(observed);
-  c.threshold = c.null.threshold(alpha);
+  fit_and_score(c, scores, observed, alpha);
   c.ms = clock.ms();
   return c;
 }

@@ -37,6 +37,9 @@ Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, const Tar
 struct Calibration {
   NullFit null;
   double p_value = 1.0;
+  /// The p that these draws cannot tell apart from p_value: optimistic_fit's and cautious_fit's
+  /// (null_model.hpp). A decision whose range holds alpha may go either way under other draws.
+  double p_value_low = 1.0, p_value_high = 1.0;
   int threshold = 0;        ///< the smallest score accepted at alpha
   int limited_draws = 0;    ///< null solves stopped by the time limit (their upper bound counted)
   /// Accepted by the screen: `null` was fitted to the solver's score bounds on the first

@@ -38,15 +38,26 @@ NullFit fit_null(const std::vector<int>& scores) {
   return f;
 }
 
-NullFit cautious_fit(const std::vector<int>& scores) {
+namespace {
+
+/// fit_null with the mean moved by `sign` 3 standard errors and the floored sd scaled to its
+/// chi-square bound at `quantile` (0.01: the upper bound, 0.99: the lower).
+NullFit shifted_fit(const std::vector<int>& scores, double quantile, double sign) {
   NullFit f = fit_null(scores);
   const int k = f.draws;
-  const double sd = std::max(f.sd, kMinNullSd) * std::sqrt((k - 1) / chi2_quantile(0.01, k - 1));
-  const double mean = f.mean + 3.0 * sd / std::sqrt(static_cast<double>(k));
+  const double sd = std::max(kMinNullSd, std::max(f.sd, kMinNullSd) *
+                                             std::sqrt((k - 1) / chi2_quantile(quantile, k - 1)));
+  const double mean = f.mean + sign * 3.0 * sd / std::sqrt(static_cast<double>(k));
   f.scale = sd * std::sqrt(6.0) / kPi;
   f.location = mean - kEulerGamma * f.scale;
   return f;
 }
+
+}  // namespace
+
+NullFit cautious_fit(const std::vector<int>& scores) { return shifted_fit(scores, 0.01, +1.0); }
+
+NullFit optimistic_fit(const std::vector<int>& scores) { return shifted_fit(scores, 0.99, -1.0); }
 
 double NullFit::p_value(int score) const {
   const double z = (score - 0.5 - location) / scale;

@@ -27,6 +27,8 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
           calibrate(solver, set.corr, params, static_cast<int>(result.inliers.size()));
       decide_calibrated(result, set.corr, c, params);
       r.p_value = c.p_value;
+      r.p_value_low = c.p_value_low;
+      r.p_value_high = c.p_value_high;
       r.null_threshold = c.threshold;
       r.null_mean = c.null.mean;
       r.null_sd = c.null.sd;

@@ -8,7 +8,8 @@ count; error rows are left out and counted apart.
         [--plot decisions.png]
 
 --rows prints one line per (dump, solver): expected, inliers, the null's mean and threshold,
-p-value and both decisions. --plot draws ROC and precision-recall curves per solver: the
+p-value, its range and both decisions. `uncertain` counts the calibrated decisions whose p range
+(the p that the null's draws cannot tell apart) holds alpha: other draws may reverse them. --plot draws ROC and precision-recall curves per solver: the
 calibrated rule over alpha (a sweep of the p-value threshold) and the count rule over K.
 """
 import math
@@ -45,7 +46,8 @@ def load_rows(paths):
     rows, errors, alphas = [], 0, set()
     for path in paths:
         doc = report_io.load_report(TOOL, path)
-        alphas.add(doc.get("parameters", {}).get("alpha"))
+        alpha = doc.get("parameters", {}).get("alpha")
+        alphas.add(alpha)
         for r in doc["results"]:
             if "solver" not in r or r.get("expected") not in ("positive", "negative"):
                 continue
@@ -53,8 +55,16 @@ def load_rows(paths):
                 errors += 1
                 continue
             r["_name"] = os.path.basename(r["dataset"].rstrip("/")) if r["dataset"] else "?"
+            r["_alpha"] = alpha
             rows.append(r)
     return rows, errors, alphas
+
+
+def uncertain(row):
+    """True when the row's p range (draws cannot tell its ends apart) holds alpha: other draws
+    may reverse the decision."""
+    rng, alpha = row.get("p_value_range"), row.get("_alpha")
+    return bool(rng) and alpha is not None and rng[0] < alpha <= rng[1]
 
 
 def count_threshold(row, count):
@@ -72,21 +82,25 @@ def main():
         report_io.fail(TOOL, "no rows with an expected decision in the reports")
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     if args.rows:
-        print("| dump | expected | solver | inliers | null mean | threshold | p | pvalue | count |")
-        print("|---|---|---|---|---|---|---|---|---|")
+        print("| dump | expected | solver | inliers | null mean | threshold | p | p range | pvalue | "
+              "count |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
         for r in rows:
             count_ok = r["inliers"] >= count_threshold(r, args.count)
             p_text = report_io.fmt(r.get("p_value"), ".2g")
+            rng = r.get("p_value_range")
+            rng_text = (f"{rng[0]:.2g} - {rng[1]:.2g}{' (holds alpha)' if uncertain(r) else ''}"
+                        if rng else "-")
             print(f"| {r['_name']} | {r['expected']} | {r['solver']} | {r['inliers']} | "
                   f"{report_io.fmt(r.get('null_mean'), '.1f')} | "
-                  f"{report_io.fmt(r.get('null_threshold'), 'd')} | {p_text} | "
+                  f"{report_io.fmt(r.get('null_threshold'), 'd')} | {p_text} | {rng_text} | "
                   f"{'accept' if r['accepted'] else 'reject'} | "
                   f"{'accept' if count_ok else 'reject'} |")
         print()
     alpha_text = ", ".join(str(a) for a in sorted(a for a in alphas if a is not None)) or "?"
     print(f"| solver | rule | TP | FP | TN | FN | precision | recall | F1 | median solve ms | "
-          f"median calibration ms | calibration / solve |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+          f"median calibration ms | calibration / solve | uncertain |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for s in solvers:
         mine = [r for r in rows if r["solver"] == s]
         solve = median(r["time_ms"] for r in mine)
@@ -105,7 +119,8 @@ def main():
                   f"{report_io.fmt(rec, '.3f')} | {report_io.fmt(f1, '.3f')} | "
                   f"{report_io.fmt(solve, '.1f')} | "
                   f"{report_io.fmt(cal if name.startswith('p') else None, '.1f')} | "
-                  f"{report_io.fmt(ratio, '.1f')} |")
+                  f"{report_io.fmt(ratio, '.1f')} | "
+                  f"{sum(map(uncertain, pv)) if name.startswith('p') else '-'} |")
     if errors:
         print(f"\n{errors} error rows left out")
     if args.plot:

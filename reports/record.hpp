@@ -46,6 +46,8 @@ struct TrialRecord {
   std::string accept_rule;                 ///< pvalue | count
   std::optional<bool> expected_positive;   ///< the expected decision, when known
   double p_value = kNaN;                   ///< pvalue rule: P(chance score >= inliers)
+  /// pvalue rule: the range of p the null's draws cannot tell apart (Calibration::p_value_low/high)
+  double p_value_low = kNaN, p_value_high = kNaN;
   std::optional<int> null_threshold;       ///< pvalue rule: smallest score accepted at alpha
   double null_mean = kNaN, null_sd = kNaN; ///< of the null scores
   int null_draws = 0, null_limited_draws = 0;

@@ -177,6 +177,8 @@ json to_json(const TrialRecord& r) {
                                              : json(nullptr)},
             {"decision", decision_of(r) ? json(decision_of(r)) : json(nullptr)},
             {"p_value", number_or_null(r.p_value)},
+            {"p_value_range", std::isnan(r.p_value_low) ? json(nullptr)
+                                                        : json::array({r.p_value_low, r.p_value_high})},
             {"null_threshold", r.null_threshold ? json(*r.null_threshold) : json(nullptr)},
             {"null_mean", number_or_null(r.null_mean)},
             {"null_sd", number_or_null(r.null_sd)},

@@ -111,6 +111,14 @@ TrialRecord trial_from_json(const json& j) {
     r.expected_positive = *e == "positive";
   }
   r.p_value = real_or_nan(j, "p_value");
+  if (j.contains("p_value_range") && !j.at("p_value_range").is_null()) {  // absent before it existed
+    const json& range = j.at("p_value_range");
+    if (!range.is_array() || range.size() != 2 || !range[0].is_number() || !range[1].is_number()) {
+      bad("field 'p_value_range': not two numbers: " + range.dump());
+    }
+    r.p_value_low = range[0].get<double>();
+    r.p_value_high = range[1].get<double>();
+  }
   r.null_threshold = optional<int>(j, "null_threshold");
   r.null_mean = real_or_nan(j, "null_mean");
   r.null_sd = real_or_nan(j, "null_sd");

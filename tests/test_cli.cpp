@@ -153,6 +153,13 @@ TEST(Cli, SweepWithNegativesScoresEveryDecision) {
         EXPECT_EQ(row["decision"], row["accepted"].get<bool>() ? "FP" : "TN");
       }
       EXPECT_EQ(row["p_value"].is_null(), rule == "count");
+      if (rule == "count") {
+        EXPECT_TRUE(row["p_value_range"].is_null());
+      } else {
+        ASSERT_EQ(row["p_value_range"].size(), 2u);
+        EXPECT_LE(row["p_value_range"][0].get<double>(), row["p_value"].get<double>());
+        EXPECT_LE(row["p_value"].get<double>(), row["p_value_range"][1].get<double>());
+      }
     }
     EXPECT_EQ(negatives, 12);
   }

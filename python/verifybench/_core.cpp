@@ -136,6 +136,9 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["omega_upper_bound"] =
       result.omega_upper_bound ? py::object(py::int_(*result.omega_upper_bound)) : py::object(py::none());
   out["p_value"] = calibration ? py::object(py::float_(calibration->p_value)) : py::object(py::none());
+  out["p_value_range"] =
+      calibration ? py::object(py::make_tuple(calibration->p_value_low, calibration->p_value_high))
+                  : py::object(py::none());
   out["null_threshold"] =
       calibration ? py::object(py::int_(calibration->threshold)) : py::object(py::none());
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;

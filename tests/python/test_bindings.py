@@ -88,6 +88,9 @@ def test_calibrated_rule_accepts_a_loop_and_rejects_a_negative():
     assert not b["accepted"] and b["p_value"] >= 0.001
     count = vb.solve("clique", neg["src"], neg["dst"], eps=0.5)  # the paper's count rule
     assert count["accepted"] and len(count["inliers"]) >= 5 and count["p_value"] is None
+    assert count["p_value_range"] is None
+    for r in (a, b):
+        assert r["p_value_range"][0] <= r["p_value"] <= r["p_value_range"][1]
     # 25 inliers: below the 34 any screen of score bounds needs, so the null was solved; 250
     # inliers: the bounds of the permuted sets (near the chance cliques) decide it
     clear = vb.synthetic(n=500, outliers=0.5, dim=3, seed=2)
