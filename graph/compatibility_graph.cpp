@@ -52,13 +52,6 @@ void row_flags_2d(const float* const* c, const float* p, int count, float eps, f
   }
 }
 
-/// Eq. (1) in double precision, the definition the float kernel must reproduce.
-template <int Dim>
-bool compatible(const Correspondences<Dim>& corr, int i, int j, double eps) {
-  return std::abs((corr.source.col(i) - corr.source.col(j)).norm() -
-                  (corr.target.col(i) - corr.target.col(j)).norm()) < eps;
-}
-
 /// Eight 0/1 bytes to eight bits (byte k -> bit k): one multiply, no carries between terms.
 inline Word pack8(const std::uint8_t* flags) {
   std::uint64_t v;

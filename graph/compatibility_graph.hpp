@@ -2,6 +2,7 @@
 // The correspondence graph of CliReg: one vertex per correspondence, an edge {i, j} when
 //   | ||m_i - m_j|| - ||q_i - q_j|| | < eps                                   (paper, Eq. 1)
 // i.e. the pair keeps its length under the motion, as any two inliers of one rigid motion do.
+#include <cmath>
 #include <cstddef>
 #include <stdexcept>
 
@@ -22,6 +23,13 @@ class GraphTimeLimit : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+/// Eq. (1) for one pair in double precision: the definition every graph of it reproduces.
+template <int Dim>
+bool compatible(const Correspondences<Dim>& corr, int i, int j, double eps) {
+  return std::abs((corr.source.col(i) - corr.source.col(j)).norm() -
+                  (corr.target.col(i) - corr.target.col(j)).norm()) < eps;
+}
 
 /// Throws std::invalid_argument for eps <= 0, std::length_error (with the sizes) when the
 /// adjacency rows would exceed params.max_bytes, GraphTimeLimit when the time limit passed (the

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/detail/multiversion.hpp"
+#include "graph/compatibility_graph.hpp"
 
 namespace verifybench {
 
@@ -59,13 +60,6 @@ VB_MULTIVERSION void row_gaps(const double (*c)[SmallGraph::kMaxVertices], int a
     }
     gap[b] = std::fabs(std::sqrt(ls) - std::sqrt(lt));
   }
-}
-
-/// Eq. (1) as the graph builder defines it (compatibility_graph.cpp), in plain double arithmetic.
-template <int Dim>
-bool compatible(const Correspondences<Dim>& corr, int i, int j, double eps) {
-  return std::abs((corr.source.col(i) - corr.source.col(j)).norm() -
-                  (corr.target.col(i) - corr.target.col(j)).norm()) < eps;
 }
 
 }  // namespace

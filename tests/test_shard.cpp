@@ -4,6 +4,7 @@
 // shards of different runs, missing or repeated shards are refused naming the file.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -135,6 +136,8 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   r.accept_rule = "pvalue";
   r.expected_positive = false;
   r.p_value = 1e-300;
+  r.p_value_low = 1e-310;  // subnormal
+  r.p_value_high = 0.004;
   r.null_threshold = 9;
   r.null_draws = 20;
   r.lever_arm = 3.5;
@@ -156,6 +159,20 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   json broken = j;
   broken["inliers"] = "many";
   EXPECT_THROW(vb::trial_from_json(broken), std::invalid_argument);
+  for (const json& range : {json(0.5), json::array({0.1}), json::array({0.1, "x"}),
+                            json::array({0.1, 0.2, 0.3})}) {
+    json bad_range = j;
+    bad_range["p_value_range"] = range;
+    try {
+      vb::trial_from_json(bad_range);
+      ADD_FAILURE() << "accepted p_value_range " << range.dump();
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("p_value_range"), std::string::npos) << e.what();
+    }
+  }
+  json before = j;  // reports written before the range existed
+  before.erase("p_value_range");
+  EXPECT_TRUE(std::isnan(vb::trial_from_json(before).p_value_low));
 }
 
 TEST(ShardCli, MergedSweepEqualsTheUnshardedOne) {
