@@ -78,11 +78,14 @@ Correspondences<Dim> permute_targets(const Correspondences<Dim>& corr, std::uint
 namespace {
 
 /// The null fitted to `scores` (draws, or bounds when screened), and `observed` scored against it.
+/// One score is a first draw that reached `observed`: its permutation p, (1 + 1) / (1 + 1) = 1,
+/// is all it says (no spread to fit), so p and its range are 1.
 void fit_and_score(Calibration& c, const std::vector<int>& scores, int observed, double alpha) {
   c.null = fit_null(scores);
   c.p_value = c.null.p_value(observed);
-  c.p_value_low = optimistic_fit(scores).p_value(observed);
-  c.p_value_high = cautious_fit(scores).p_value(observed);
+  const bool one = scores.size() < 2;
+  c.p_value_low = one ? c.p_value : optimistic_fit(scores).p_value(observed);
+  c.p_value_high = one ? c.p_value : cautious_fit(scores).p_value(observed);
   c.threshold = c.null.threshold(alpha);
 }
 
@@ -155,8 +158,10 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
     if (workers > 1) p.threads = 1;
     return p;
   };
+  // Past K draws, while the range of p holds alpha, up to `most` in all.
+  const int most = std::max(draws, params.accept.max_null_draws);
   std::vector<int> scores;
-  // Takes draw k's result; true when the decision of all K draws is known.
+  // Takes draw k's result; true when no further draw can change the decision.
   auto take = [&](int k, const Result<Dim>& r) {
     if (r.status == Status::error) {
       throw std::runtime_error("null model: permuted set " + std::to_string(k) +
@@ -169,24 +174,31 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
     }
     scores.push_back(score);
     const int done = k + 1;
-    if (done < 2) return false;
-    // Early stops that cannot change the decision of all K draws: a draw that reaches the
-    // observed score keeps p >= 2 / (K + 1) (the permutation floor of p_value) ...
-    if (score >= observed && 2.0 / (draws + 1.0) >= alpha) return true;
-    // ... and a score beyond every draw, rejected even by a cautious fit of the draws so far.
-    return done >= kMinDrawsToAccept && done < draws &&
-           cautious_fit(scores).p_value(observed) < alpha;
+    if (done < draws) {
+      // Early stops that cannot change the decision of all K draws: a draw that reaches the
+      // observed score keeps p >= 2 / (K + 1) (the permutation floor of p_value), so the first
+      // one that does decides at once ...
+      if (score >= observed && 2.0 / (draws + 1.0) >= alpha) return true;
+      // ... and a score beyond every draw, rejected even by a cautious fit of the draws so far.
+      return done >= kMinDrawsToAccept && cautious_fit(scores).p_value(observed) < alpha;
+    }
+    // K draws or more: on only while the range of p holds alpha (a draw that reached the score
+    // lifts both ends to the permutation floor, so the range drops out once that is >= alpha).
+    if (done >= most) return true;
+    return !(optimistic_fit(scores).p_value(observed) < alpha &&
+             alpha <= cautious_fit(scores).p_value(observed));
   };
   if (workers <= 1) {
-    for (int k = 0; k < draws; ++k) {
+    for (int k = 0; k < most; ++k) {
       if (take(k, solver.solve(null_set(k), draw_params(k)))) break;
     }
   } else {
     WorkerPool pool(workers);
     std::vector<Result<Dim>> batch(static_cast<std::size_t>(workers));
     bool stop = false;
-    for (int first = 0; first < draws && !stop; first += workers) {
-      const int count = std::min(workers, draws - first);
+    for (int first = 0, count = 0; first < most && !stop; first += count) {
+      // A batch does not cross the K-th draw, past which most sets are not drawn.
+      count = std::min(workers, (first < draws ? draws : most) - first);
       pool.parallel_for(count, [&](int j) {
         batch[static_cast<std::size_t>(j)] = solver.solve(null_set(first + j), draw_params(first + j));
       });

@@ -51,9 +51,13 @@ struct Calibration {
 
 /// Runs `solver` on up to params.accept.null_draws = K permuted sets (draw k from
 /// derive_seed(params.seed, {kNullStream, k}); the solver's own seed derived the same way) and
-/// scores `observed` against them. Stops early where the decision is already known: once a draw
-/// reaches `observed` (p >= 2 / (K + 1) >= alpha from then on), or after kMinDrawsToAccept draws
-/// when even cautious_fit() puts `observed` below alpha; null.draws says how many ran. A null solve stopped by the time limit counts with its proven
+/// scores `observed` against them. Stops early where the decision of all K draws is already known:
+/// at the first draw that reaches `observed` (p >= 2 / (K + 1) >= alpha from then on; a single
+/// such draw leaves p = 1), or after kMinDrawsToAccept draws when even cautious_fit() puts
+/// `observed` below alpha. After K draws, where the range of p [optimistic_fit, cautious_fit]
+/// still holds alpha, draws on until it does not or params.accept.max_null_draws ran; the plain
+/// fit of all the draws then decides. null.draws says how many ran. A null solve stopped by the
+/// time limit counts with its proven
 /// upper bound when it has one (clique solvers), so a limit never makes chance look smaller.
 /// First, when the solver has a score bound (Solver::score_bound), a screen: the bounds of the
 /// permuted sets (the same sets the draws would solve, at least kMinDrawsToAccept, at most K) are

@@ -15,10 +15,7 @@ constexpr double kPi = 3.14159265358979324;
 }  // namespace
 
 NullFit fit_null(const std::vector<int>& scores) {
-  if (scores.size() < 2) {
-    throw std::invalid_argument("null model: " + std::to_string(scores.size()) +
-                                " null scores; at least 2 are needed");
-  }
+  if (scores.empty()) throw std::invalid_argument("null model: no null scores");
   NullFit f;
   f.scores = scores;
   f.draws = static_cast<int>(scores.size());
@@ -31,7 +28,7 @@ NullFit fit_null(const std::vector<int>& scores) {
   f.mean = sum / f.draws;
   double ss = 0.0;
   for (int s : scores) ss += (s - f.mean) * (s - f.mean);
-  f.sd = std::sqrt(ss / (f.draws - 1));
+  f.sd = f.draws > 1 ? std::sqrt(ss / (f.draws - 1)) : 0.0;
   // Gumbel moments: variance = (pi beta)^2 / 6, mean = mu + gamma beta.
   f.scale = std::max(f.sd, kMinNullSd) * std::sqrt(6.0) / kPi;
   f.location = f.mean - kEulerGamma * f.scale;
@@ -43,6 +40,10 @@ namespace {
 /// fit_null with the mean moved by `sign` 3 standard errors and the floored sd scaled to its
 /// chi-square bound at `quantile` (0.01: the upper bound, 0.99: the lower).
 NullFit shifted_fit(const std::vector<int>& scores, double quantile, double sign) {
+  if (scores.size() < 2) {
+    throw std::invalid_argument("null model: " + std::to_string(scores.size()) +
+                                " null scores; a spread needs at least 2");
+  }
   NullFit f = fit_null(scores);
   const int k = f.draws;
   const double sd = std::max(kMinNullSd, std::max(f.sd, kMinNullSd) *

@@ -27,12 +27,13 @@ struct NullFit {
 /// an integer score unresolved (measured on synthetic negatives, BENCHMARK.md section 14).
 inline constexpr double kMinNullSd = 0.5;
 
-/// Throws std::invalid_argument for fewer than 2 scores or a negative one.
+/// Throws std::invalid_argument for no score or a negative one. One score fits with sd 0 (floored).
 NullFit fit_null(const std::vector<int>& scores);
 
 /// fit_null with the moments moved to the pessimistic end of what k draws allow: the mean raised
 /// by 3 standard errors, the (floored) sd by its one-sided 99% chi-square bound. Its p-values are
-/// above fit_null's; calibrate() accepts early only below alpha under this fit.
+/// above fit_null's; calibrate() accepts early only below alpha under this fit. Throws
+/// std::invalid_argument for fewer than 2 scores.
 NullFit cautious_fit(const std::vector<int>& scores);
 
 /// The other end: the mean lowered by 3 standard errors, the sd by its lower 99% chi-square bound

@@ -34,6 +34,9 @@ struct AcceptParams {
   Rule rule = Rule::pvalue;
   double alpha = 0.001;  ///< accept when p < alpha, in (0, 1)
   int null_draws = 20;   ///< permuted sets the null is fitted on, >= 2
+  /// Where the range of p after null_draws draws still holds alpha (the decision other draws may
+  /// reverse), draw on until it does not or this many draws ran in all; <= null_draws: never.
+  int max_null_draws = 100;
 };
 const char* to_string(AcceptParams::Rule rule);
 /// "pvalue" | "count"; throws std::invalid_argument naming the value otherwise.

@@ -184,28 +184,69 @@ TEST(NullModel, NeverBelowThePermutationFloorAndRejectsBadInput) {
   for (int s = 1; s < 40; ++s) EXPECT_LE(f.p_value(s), f.p_value(s - 1));
   EXPECT_LE(f.p_value(30), 1e-12);
   EXPECT_GE(cautious_fit(f.scores).p_value(12), f.p_value(12));
-  EXPECT_THROW(fit_null({3}), std::invalid_argument);
+  EXPECT_THROW(fit_null({}), std::invalid_argument);
   EXPECT_THROW(fit_null({3, -1}), std::invalid_argument);
+  // One draw: sd 0, and a score it reached has the permutation p (1 + 1) / (1 + 1) = 1.
+  const NullFit one = fit_null({5});
+  EXPECT_EQ(one.sd, 0.0);
+  EXPECT_DOUBLE_EQ(one.p_value(5), 1.0);
+  EXPECT_THROW(cautious_fit({5}), std::invalid_argument);
+  EXPECT_THROW(optimistic_fit({5}), std::invalid_argument);
 }
 
-/// Oracle for one calibration: the K null solves made by hand from the documented seeds, fitted
-/// on all K, give the same decision; a screen's bounds are never below the scores of the same
-/// permuted sets, and the draws that ran are those scores.
+/// The null solve of draw k, made by hand from the documented seeds.
+template <int Dim>
+int hand_draw(const Solver& solver, const Correspondences<Dim>& corr, const SolverParams& params,
+              int k) {
+  const std::uint64_t s = derive_seed(params.seed, {kNullStream, std::uint64_t(k)});
+  SolverParams p = params;
+  p.accept.rule = AcceptParams::Rule::count;
+  p.seed = derive_seed(s, {1});
+  return static_cast<int>(solver.solve(permute_targets(corr, s), p).inliers.size());
+}
+
+/// Whether the range of p of these scores, [optimistic_fit, cautious_fit], holds alpha.
+bool range_holds(const std::vector<int>& scores, int observed, double alpha) {
+  return optimistic_fit(scores).p_value(observed) < alpha &&
+         alpha <= cautious_fit(scores).p_value(observed);
+}
+
+/// Oracle for one calibration: the null solves made by hand from the documented seeds. Where it
+/// stopped at or before K draws, the K draws fitted all together give the same decision (and
+/// their range does not hold alpha when all K ran, or it would have drawn on); where it drew on,
+/// the range held alpha after K draws and at every count before the last, and no longer at the
+/// last unless the cap was reached, and the plain fit of those draws decides. A screen's bounds
+/// are never below the scores of the same permuted sets, and the draws that ran are those scores.
 template <int Dim>
 void expect_the_decision_of_all_draws(const Solver& solver, const Correspondences<Dim>& corr,
                                       const SolverParams& params, int observed,
                                       const Calibration& c, const std::string& label) {
+  const int K = params.accept.null_draws;
+  const int most = std::max(K, params.accept.max_null_draws);
+  const double alpha = params.accept.alpha;
+  const int ran = c.screened ? 0 : c.null.draws;
+  ASSERT_LE(ran, most) << label;
   std::vector<int> all;
-  for (int k = 0; k < params.accept.null_draws; ++k) {
-    const std::uint64_t s = derive_seed(params.seed, {kNullStream, std::uint64_t(k)});
-    SolverParams p = params;
-    p.accept.rule = AcceptParams::Rule::count;
-    p.seed = derive_seed(s, {1});
-    all.push_back(static_cast<int>(solver.solve(permute_targets(corr, s), p).inliers.size()));
+  for (int k = 0; k < std::max(K, ran); ++k) all.push_back(hand_draw(solver, corr, params, k));
+  const std::vector<int> first_k(all.begin(), all.begin() + K);
+  if (ran <= K) {
+    EXPECT_EQ(c.p_value < alpha, fit_null(first_k).p_value(observed) < alpha)
+        << label << " observed " << observed << " screened " << c.screened;
+    if (ran == K && most > K) {
+      EXPECT_FALSE(range_holds(first_k, observed, alpha)) << label;
+    }
+  } else {
+    EXPECT_TRUE(range_holds(first_k, observed, alpha)) << label;
+    for (int j = K + 1; j < ran; ++j) {
+      EXPECT_TRUE(range_holds(std::vector<int>(all.begin(), all.begin() + j), observed, alpha))
+          << label << " drew on past " << j;
+    }
+    const std::vector<int> taken(all.begin(), all.begin() + ran);
+    if (ran < most) {
+      EXPECT_FALSE(range_holds(taken, observed, alpha)) << label;
+    }
+    EXPECT_EQ(c.p_value, fit_null(taken).p_value(observed)) << label;
   }
-  const NullFit full = fit_null(all);
-  EXPECT_EQ(c.p_value < params.accept.alpha, full.p_value(observed) < params.accept.alpha)
-      << label << " observed " << observed << " screened " << c.screened;
   ASSERT_LE(c.null.scores.size(), all.size());
   for (std::size_t k = 0; k < c.null.scores.size(); ++k) {
     if (c.screened) {
@@ -214,13 +255,21 @@ void expect_the_decision_of_all_draws(const Solver& solver, const Correspondence
       EXPECT_EQ(c.null.scores[k], all[k]) << label << " draw " << k;
     }
   }
-  if (c.p_value < params.accept.alpha && c.null.draws < params.accept.null_draws) {
+  if (c.p_value < alpha && c.null.draws < K) {
     EXPECT_GE(c.null.draws, kMinDrawsToAccept) << label;  // no accept before it
   }
   if (c.screened) {
     EXPECT_GE(c.null.draws, kMinDrawsToAccept) << label;
-    EXPECT_LT(c.p_value, params.accept.alpha) << label;
-    EXPECT_LT(c.p_value_high, params.accept.alpha) << label;  // the cautious fit decided
+    EXPECT_LT(c.p_value, alpha) << label;
+    EXPECT_LT(c.p_value_high, alpha) << label;  // the cautious fit decided
+  }
+  if (c.null.draws == 1) {
+    // The first draw reached the score: its permutation p, and nothing to fit a range to.
+    EXPECT_GE(c.null.scores[0], observed) << label;
+    EXPECT_EQ(c.p_value, 1.0) << label;
+    EXPECT_EQ(c.p_value_low, 1.0) << label;
+    EXPECT_EQ(c.p_value_high, 1.0) << label;
+    return;
   }
   // The range is the optimistic and cautious fits of the same scores, around the plain fit's p.
   EXPECT_EQ(c.p_value_low, optimistic_fit(c.null.scores).p_value(observed)) << label;
@@ -270,6 +319,54 @@ void expect_early_stops_give_the_decision_of_all_draws(const std::string& name) 
 TEST(Calibration, EarlyStopsAndTheScreenGiveTheDecisionOfAllDraws) {
   for (const char* name : {"clique", "ransac", "mac"}) {
     expect_early_stops_give_the_decision_of_all_draws(name);
+  }
+}
+
+TEST(Calibration, DrawsOnWhereTheRangeOfPHoldsAlpha) {
+  // Scores set where the first K = 8 draws leave the decision open (their range of p holds
+  // alpha): the draws go on, one by one or 3 at a time alike, until the range drops alpha or 40
+  // ran, and the plain fit of them all decides (the oracle above, from hand-made draws). With
+  // max_null_draws <= K, the same scores stop at K.
+  SolverParams params;
+  params.eps = 0.3;
+  params.inlier_threshold = 0.15;
+  params.ransac.iterations = 300;
+  params.accept.null_draws = 8;
+  params.accept.max_null_draws = 40;
+  for (const char* name : {"clique", "ransac"}) {
+    const auto solver = SolverRegistry::create(name);
+    int drew_on = 0, settled = 0, tried = 0;
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+      const LabeledSet<3> set = draw<3>(300, 0.5, seed, true);
+      params.seed = derive_seed(seed, {11});
+      std::vector<int> first;
+      for (int k = 0; k < params.accept.null_draws; ++k) {
+        first.push_back(hand_draw(*solver, set.corr, params, k));
+      }
+      for (int observed = *std::max_element(first.begin(), first.end()) + 1; observed < 200;
+           ++observed) {
+        if (!range_holds(first, observed, params.accept.alpha)) continue;
+        ++tried;
+        const std::string label = std::string(name) + " seed " + std::to_string(seed) +
+                                  " observed " + std::to_string(observed);
+        const Calibration c = calibrate(*solver, set.corr, params, observed);
+        expect_the_decision_of_all_draws(*solver, set.corr, params, observed, c, label);
+        EXPECT_GT(c.null.draws, params.accept.null_draws) << label;
+        drew_on += c.null.draws > params.accept.null_draws;
+        settled += c.null.draws < params.accept.max_null_draws;
+        SolverParams threaded = params;
+        threaded.threads = 3;
+        EXPECT_EQ(calibrate(*solver, set.corr, threaded, observed).null.scores, c.null.scores)
+            << label;
+        SolverParams fixed = params;
+        fixed.accept.max_null_draws = params.accept.null_draws;
+        const Calibration k_only = calibrate(*solver, set.corr, fixed, observed);
+        EXPECT_EQ(k_only.null.scores, first) << label;
+        EXPECT_EQ(k_only.p_value, fit_null(first).p_value(observed)) << label;
+      }
+    }
+    EXPECT_GT(tried, 0) << name;
+    EXPECT_GT(settled, 0) << name;  // some ranges drop alpha before the cap
   }
 }
 

@@ -149,7 +149,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
 py::dict solve(const std::string& name, const Array& src, const Array& dst, double eps,
                std::optional<double> inlier_threshold, int min_inliers, double time_limit,
                std::uint64_t seed, int threads, const std::string& accept, double alpha,
-               int null_draws, const std::optional<Array>& scores) {
+               int null_draws, int max_null_draws, const std::optional<Array>& scores) {
   const int dim = dimension_of(src, dst);
   vb::SolverParams params;
   params.eps = eps;
@@ -161,6 +161,7 @@ py::dict solve(const std::string& name, const Array& src, const Array& dst, doub
   params.accept.rule = vb::parse_accept_rule(accept);
   params.accept.alpha = alpha;
   params.accept.null_draws = null_draws;
+  params.accept.max_null_draws = max_null_draws;
   params.validate();
   return dim == 2 ? solve_dim<2>(name, src, dst, scores, params)
                   : solve_dim<3>(name, src, dst, scores, params);
@@ -234,7 +235,7 @@ PYBIND11_MODULE(_core, m) {
         py::arg("eps") = 0.1, py::arg("inlier_threshold") = py::none(), py::arg("min_inliers") = 0,
         py::arg("time_limit") = 60.0, py::arg("seed") = 1, py::arg("threads") = 1,
         py::arg("accept") = "count", py::arg("alpha") = 0.001, py::arg("null_draws") = 20,
-        py::arg("scores") = py::none(),
+        py::arg("max_null_draws") = 100, py::arg("scores") = py::none(),
         "Runs one registered solver on correspondences src[i] -> dst[i] ((n, 2) or (n, 3) arrays).\n"
         "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
         "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value.\n"

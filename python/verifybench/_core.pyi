@@ -25,6 +25,7 @@ def solve(
     accept: str = "count",
     alpha: float = 0.001,
     null_draws: int = 20,
+    max_null_draws: int = 100,
     scores: Optional[npt.ArrayLike] = None,
 ) -> Dict[str, Any]: ...
 def synthetic(

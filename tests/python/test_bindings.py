@@ -125,6 +125,8 @@ def test_bad_input_raises_value_error_naming_it(tmp_path):
         vb.solve("clique", s["src"], s["dst"], eps=-1.0)
     with pytest.raises(ValueError, match="accept"):
         vb.solve("clique", s["src"], s["dst"], accept="maybe")
+    with pytest.raises(ValueError, match="max_null_draws"):
+        vb.solve("clique", s["src"], s["dst"], accept="pvalue", max_null_draws=-1)
     (tmp_path / "corr.txt").write_text("0 0 0 1 1 1\n0 0 0 1 1 oops\n")
     with pytest.raises(vb.InputError, match="corr.txt:2"):
         vb.read_dump(str(tmp_path))
