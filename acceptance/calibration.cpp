@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "acceptance/prior_gate.hpp"
 #include "core/parallel.hpp"
 #include "graph/bitgraph.hpp"
 #include "core/random.hpp"
@@ -215,6 +216,11 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                        const Calibration& calibration, const SolverParams& params) {
   if (params.accept.rule != AcceptParams::Rule::pvalue || result.status == Status::error) return;
   result.accepted = calibration.p_value < params.accept.alpha && pins_motion(corr, result.inliers);
+  if (result.accepted && params.accept.prior_gate > 0.0) {
+    if (const auto d2 = prior_distance2(corr, result.T_target_source)) {
+      result.accepted = inside_prior_gate<Dim>(*d2, params.accept.prior_gate);
+    }
+  }
   if (result.status != Status::time_limit) {
     result.status = result.accepted ? Status::ok : Status::rejected;
   }

@@ -72,8 +72,9 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                       const SolverParams& params, int observed);
 
 /// Applies the rule to a finished solve: under `count` leaves the solver's decision; under
-/// `pvalue` accepts when p < alpha and the inliers pin down a motion (pins_motion), and sets
-/// status ok / rejected to match (time_limit and error stay).
+/// `pvalue` accepts when p < alpha, the inliers pin down a motion (pins_motion) and, where the set
+/// carries a pose prior and params.accept.prior_gate > 0, the fitted motion is inside the prior's
+/// gate (prior_gate.hpp); and sets status ok / rejected to match (time_limit and error stay).
 template <int Dim>
 void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                        const Calibration& calibration, const SolverParams& params);

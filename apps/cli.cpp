@@ -21,6 +21,9 @@ void add_solver_options(Options& o, const SolverOptionDefaults& d) {
       .add("max-null-draws", "K", "100",
            "pvalue rule: where the range of p after --null-draws draws still holds alpha, draw on "
            "until it does not or K draws ran in all (<= --null-draws: never)")
+      .add("prior-gate", "C", "0.999",
+           "pvalue rule, sets with a pose prior: accept only motions inside the prior's "
+           "chi-square gate at confidence C (0 = no gate)")
       .add("min-inliers", "K", "0",
            "count rule: accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
       .add("time-limit", "S", "60", "per-solve time limit [s]; best-so-far returned past it")
@@ -56,6 +59,7 @@ SolverParams solver_params(const Options& o) {
   p.accept.alpha = o.real("alpha", 1e-300, 0.999999);
   p.accept.null_draws = static_cast<int>(o.integer("null-draws", 2, 100000));
   p.accept.max_null_draws = static_cast<int>(o.integer("max-null-draws", 0, 100000));
+  p.accept.prior_gate = o.real("prior-gate", 0.0, 0.999999999);
   p.time_limit_s = o.real("time-limit", 1e-6, 1e9);
   p.max_graph_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30)) << 20;
   p.seed = o.seed("seed");
@@ -110,6 +114,7 @@ nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c) {
                       {"alpha", p.accept.alpha},
                       {"null_draws", p.accept.null_draws},
                       {"max_null_draws", p.accept.max_null_draws},
+                      {"prior_gate", p.accept.prior_gate},
                       {"min_inliers", p.min_inliers},
                       {"accept_threshold_2d", p.accept_threshold(2)},
                       {"accept_threshold_3d", p.accept_threshold(3)},

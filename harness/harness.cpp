@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "acceptance/calibration.hpp"
+#include "acceptance/prior_gate.hpp"
 #include "core/metrics.hpp"
 #include "core/random.hpp"
 #include "core/timer.hpp"
@@ -65,6 +66,7 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
   const SelectionGeometry geometry = selection_geometry(set.corr, result.inliers);
   r.distinct_inliers = geometry.distinct;
   r.lever_arm = geometry.lever_arm;
+  if (const auto d2 = prior_distance2(set.corr, result.T_target_source)) r.prior_d2 = *d2;
 
   if (!set.truth.labels.empty()) {
     const InlierScores s = inlier_scores(result.inliers, set.truth.labels);

@@ -55,6 +55,8 @@ struct TrialRecord {
   double calibration_ms = 0;  ///< the null solves (not in time_ms)
   std::optional<int> distinct_inliers;  ///< selection_geometry().distinct of the selected set
   double lever_arm = kNaN;              ///< selection_geometry().lever_arm [m]
+  /// Sets with a pose prior: d^2 of the fitted motion under it (prior_gate.hpp); NaN -> null.
+  double prior_d2 = kNaN;
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 

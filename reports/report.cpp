@@ -188,6 +188,7 @@ json to_json(const TrialRecord& r) {
             {"calibration_ms", r.calibration_ms},
             {"distinct_inliers", r.distinct_inliers ? json(*r.distinct_inliers) : json(nullptr)},
             {"lever_arm", number_or_null(r.lever_arm)},
+            {"prior_d2", number_or_null(r.prior_d2)},
             {"T_target_source", r.T_target_source}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;

@@ -128,6 +128,7 @@ TrialRecord trial_from_json(const json& j) {
   r.calibration_ms = get<double>(j, "calibration_ms");
   r.distinct_inliers = optional<int>(j, "distinct_inliers");
   r.lever_arm = real_or_nan(j, "lever_arm");
+  r.prior_d2 = real_or_nan(j, "prior_d2");  // absent (before it existed) or null: no prior
   const json& T = field(j, "T_target_source");
   if (!T.is_array()) bad("field 'T_target_source': not an array");
   for (const json& v : T) {

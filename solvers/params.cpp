@@ -58,6 +58,8 @@ void SolverParams::validate() const {
   require(time_limit_s > 0.0, "time_limit_s", time_limit_s, "a value > 0");
   require(accept.alpha > 0.0 && accept.alpha < 1.0, "alpha", accept.alpha, "a value in (0, 1)");
   require(accept.null_draws >= 2, "null_draws", accept.null_draws, "an integer >= 2");
+  require(accept.prior_gate >= 0.0 && accept.prior_gate < 1.0, "prior_gate", accept.prior_gate,
+          "a value in [0, 1) (0 = no gate)");
   require(accept.max_null_draws >= 0, "max_null_draws", accept.max_null_draws, "an integer >= 0");
   require(threads >= 0, "threads", threads, "an integer >= 0 (0 = all cores)");
   for (const ParamFamily& family : param_families()) {

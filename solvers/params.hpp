@@ -37,6 +37,9 @@ struct AcceptParams {
   /// Where the range of p after null_draws draws still holds alpha (the decision other draws may
   /// reverse), draw on until it does not or this many draws ran in all; <= null_draws: never.
   int max_null_draws = 100;
+  /// pvalue rule, sets with a pose prior: accept only a motion inside the prior's chi-square gate
+  /// at this confidence (acceptance/prior_gate.hpp), in [0, 1); 0 = no gate.
+  double prior_gate = 0.999;
 };
 const char* to_string(AcceptParams::Rule rule);
 /// "pvalue" | "count"; throws std::invalid_argument naming the value otherwise.

@@ -52,6 +52,7 @@ TEST(Cli, RejectsBadInputWithExitCode2) {
   expect_usage_error("sweep --alpha 0 " + kOut, "--alpha: '0' is outside");
   expect_usage_error("sweep --null-draws 1 " + kOut, "--null-draws: '1' is outside");
   expect_usage_error("sweep --max-null-draws -1 " + kOut, "--max-null-draws: '-1' is outside");
+  expect_usage_error("sweep --prior-gate 1 " + kOut, "--prior-gate: '1' is outside");
   expect_usage_error("run --dump x --expected maybe " + kOut, "--expected: 'maybe'");
   expect_usage_error("sweep --overlap 0 " + kOut, "--overlap: '0' is outside");
   expect_usage_error("sweep --jcbb-confidence 1 " + kOut, "--jcbb-confidence");

@@ -141,6 +141,7 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   r.null_threshold = 9;
   r.null_draws = 20;
   r.lever_arm = 3.5;
+  r.prior_d2 = 31.25;
   r.T_target_source = {1, 0, 0.5, 0, 1, -0.25, 0, 0, 1};
   const json j = vb::to_json(r);
   EXPECT_EQ(vb::to_json(vb::trial_from_json(json::parse(j.dump()))), j);
