@@ -64,7 +64,10 @@ void add_loop_options(Options& o) {
       .add("gt-max-distance", "M", "100", "true closure: anchors closer than M")
       .add("pose-tolerance", "M", "6", "correct closure: relative translation error under M")
       .add("loop-sigma-trans", "M", "0.5", "pose graph: loop edge translation sigma")
-      .add("loop-sigma-rot-deg", "DEG", "2", "pose graph: loop edge rotation sigma");
+      .add("loop-sigma-rot-deg", "DEG", "2", "pose graph: loop edge rotation sigma")
+      .add("odometry-prior", "", "",
+           "each candidate carries odometry's motion as a pose prior (drift-model sigmas of the "
+           "travel between the maps): the pvalue rule's --prior-gate and jcbb's prior mode use it");
   cli::add_solver_options(o, {"1", "DIR", "report folder: loop.json and loop.md (required)"});
 }
 
@@ -138,6 +141,7 @@ LoopConfig loop_config(const Options& o) {
   c.gt_max_distance = o.real("gt-max-distance", 1e-6, 1e9);
   c.pose_tolerance = o.real("pose-tolerance", 1e-6, 1e9);
   c.loop_sigma_trans = o.real("loop-sigma-trans", 1e-6, 1e6);
+  c.odometry_prior = o.flag("odometry-prior");
   c.loop_sigma_rot_deg = o.real("loop-sigma-rot-deg", 1e-6, 180.0);
   c.solvers = cli::solver_names(o);
   c.params = cli::solver_params(o);
@@ -179,6 +183,7 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"pose_tolerance_m", c.pose_tolerance},
                {"loop_sigma_trans_m", c.loop_sigma_trans},
                {"loop_sigma_rot_deg", c.loop_sigma_rot_deg},
+               {"odometry_prior", c.odometry_prior},
                {"odometry", c.odometry},
                {"gicp", {{"voxel_m", c.gicp.voxel},
                          {"max_correspondence_m", c.gicp.max_correspondence},

@@ -6,11 +6,6 @@
 
 namespace verifybench {
 
-namespace {
-
-// Sigmas of the odometry between two anchors `length` metres apart under the drift model: the
-// per-axis translation noise adds up to at most trans_rel * L, the yaw walk's sigma is
-// yaw * sqrt(L) and swings the end point sideways by about that times L / sqrt(3).
 Eigen::Matrix<double, 6, 1> odometry_sigma(const DriftParams& d, double length) {
   const double deg = M_PI / 180.0, L = std::max(length, 1.0);
   const double yaw = std::max(d.yaw_deg * deg * std::sqrt(L), 1e-4);
@@ -20,6 +15,8 @@ Eigen::Matrix<double, 6, 1> odometry_sigma(const DriftParams& d, double length) 
   s << tilt, tilt, yaw, trans, trans, trans;
   return s;
 }
+
+namespace {
 
 ClosureScore score_at(const std::vector<const ClosureRow*>& rows, int positives,
                       const std::function<bool(const ClosureRow&)>& accept) {

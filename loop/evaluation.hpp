@@ -11,6 +11,12 @@
 
 namespace verifybench {
 
+/// Sigmas of the odometry between two poses `length` metres of travel apart under the drift
+/// model, (roll, pitch, yaw, x, y, z): the per-axis translation noise adds up to at most
+/// trans_rel * L, the yaw walk's sigma is yaw * sqrt(L) and swings the end point sideways by about
+/// that times L / sqrt(3). The pose graph's odometry edges, and --odometry-prior's covariance.
+Eigen::Matrix<double, 6, 1> odometry_sigma(const DriftParams& d, double length);
+
 /// Fills run.summary and run.ape_without from run.frames, run.truth, run.odometry, run.rows and
 /// run.true_closures.
 void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& maps, LoopRun& run);

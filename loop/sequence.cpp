@@ -21,6 +21,41 @@
 
 namespace verifybench {
 
+namespace {
+
+/// --odometry-prior: odometry's relative motion of the pair (query map -> match map, the frames of
+/// T_truth) with odometry_sigma() of the travel between the two anchors; planar sets get its
+/// (yaw, x, y) part.
+void attach_odometry_prior(Dump& dump, const std::vector<LocalMap>& maps, const Candidate& c,
+                           const DriftParams& drift) {
+  const Rigid<3> T0 =
+      maps[c.match].T_world_map_odometry.inverse() * maps[c.query].T_world_map_odometry;
+  double travel = 0.0;
+  for (int k = std::min(c.query, c.match); k < std::max(c.query, c.match); ++k) {
+    travel += (maps[k + 1].T_world_map_odometry.translation() -
+               maps[k].T_world_map_odometry.translation()).norm();
+  }
+  const Eigen::Matrix<double, 6, 1> sigma = odometry_sigma(drift, travel);
+  std::visit(
+      [&](auto& set) {
+        constexpr int Dim = std::decay_t<decltype(set.corr.source)>::RowsAtCompileTime;
+        PosePrior<Dim> prior;
+        if constexpr (Dim == 2) {
+          prior.T_target_source.linear() =
+              Eigen::Rotation2Dd(std::atan2(T0.linear()(1, 0), T0.linear()(0, 0))).toRotationMatrix();
+          prior.T_target_source.translation() = T0.translation().head<2>();
+          prior.covariance = Eigen::Vector3d(sigma(2), sigma(3), sigma(4)).cwiseAbs2().asDiagonal();
+        } else {
+          prior.T_target_source = T0;
+          prior.covariance = sigma.cwiseAbs2().asDiagonal();
+        }
+        set.corr.prior = prior;
+      },
+      dump.set);
+}
+
+}  // namespace
+
 void LoopConfig::validate() const {
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0) || !std::isfinite(v)) {
@@ -234,6 +269,7 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
     SolverParams sp = config.params;
     sp.seed = derive_seed(config.seed, {5, static_cast<std::uint64_t>(c.query),
                                         static_cast<std::uint64_t>(c.match)});
+    if (config.odometry_prior) attach_odometry_prior(dump, maps, c, config.drift);
     for (std::size_t s = 0; s < solvers.size(); ++s) {
       ClosureRow row;
       row.query = c.query;

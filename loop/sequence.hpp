@@ -65,6 +65,10 @@ struct LoopConfig {
   SolverParams params;
   double loop_sigma_trans = 0.5;    ///< [m] loop edges in the pose graph
   double loop_sigma_rot_deg = 2.0;  ///< [deg]
+  /// Each candidate pair carries odometry's guess of its motion as a pose prior (covariance
+  /// odometry_sigma() of the travel between the two maps): the calibrated rule's gate
+  /// (acceptance/prior_gate.hpp) and JCBB's prior mode use it. Off: the paper's setting.
+  bool odometry_prior = false;
   std::uint64_t seed = 1;
   int threads = 1;  ///< maps built in parallel; results do not depend on it
 

@@ -369,6 +369,53 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   }
 }
 
+// --odometry-prior on the drawn block driven twice, calibrated rule: every candidate carries
+// odometry's motion as a prior, which only gates. Oracle: the run without it (the same p-values,
+// as the prior touches neither solve nor null), and the gate's chi-square point (3 dof; at a
+// confidence of 0.05, 0.3518, tight enough to gate some accepted rows here, whose d^2 reach 1.8):
+// a row is accepted with the prior exactly when it was without and its d^2 is inside.
+TEST(LoopCli, OdometryPriorOnlyGatesTheCalibratedDecisions) {
+  if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
+  const std::vector<vb::Rigid<3>> path = vb::block_laps(220, 140, 2);
+  const fs::path dir = fs::temp_directory_path() / "vb_loop_prior";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  vb::write_kitti_poses((dir / "poses.txt").string(), path);
+  auto run = [&](const std::string& extra, const std::string& out) {
+    const auto r = run_cli("loop --trajectory " + (dir / "poses.txt").string() +
+                           " --pipeline 2d --solvers clique --accept pvalue --scan-spacing 4"
+                           " --lidar-columns 512 --quiet --threads 2 " + extra + " --out " +
+                           (dir / out).string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream in(dir / out / "loop.json");
+    return nlohmann::json::parse(in);
+  };
+  const auto plain = run("", "plain");
+  const auto gated = run("--odometry-prior --prior-gate 0.05", "gated");
+  EXPECT_FALSE(plain["parameters"]["loop"]["odometry_prior"].get<bool>());
+  EXPECT_TRUE(gated["parameters"]["loop"]["odometry_prior"].get<bool>());
+  ASSERT_EQ(plain["closures"].size(), gated["closures"].size());
+  ASSERT_GE(gated["closures"].size(), 4u);
+  int inside = 0, kept_true = 0, gated_out = 0;
+  for (std::size_t i = 0; i < gated["closures"].size(); ++i) {
+    const auto& a = plain["closures"][i];
+    const auto& b = gated["closures"][i];
+    ASSERT_EQ(a["dataset"], b["dataset"]);
+    EXPECT_TRUE(a["prior_d2"].is_null());
+    if (b["status"] == "error" || b["p_value"].is_null()) continue;
+    ASSERT_TRUE(b["prior_d2"].is_number()) << b.dump();
+    EXPECT_EQ(a["p_value"], b["p_value"]) << b["dataset"];
+    const bool in_gate = b["prior_d2"].get<double>() <= 0.3518;
+    inside += in_gate;
+    gated_out += a["accepted"].get<bool>() && !in_gate;
+    EXPECT_EQ(b["accepted"].get<bool>(), a["accepted"].get<bool>() && in_gate) << b.dump();
+    kept_true += a["accepted"].get<bool>() && a["correct"].get<bool>() && b["accepted"].get<bool>();
+  }
+  EXPECT_GT(inside, 0);
+  EXPECT_GT(gated_out, 0);
+  EXPECT_GE(kept_true, 2);  // true loops found without the prior are kept with it
+}
+
 TEST(LoopCli, BadInputIsRefusedWithExitCode2) {
   const fs::path dir = fs::temp_directory_path() / "vb_loop_bad";
   fs::create_directories(dir);
