@@ -17,20 +17,14 @@
 #include "datasets/dump_format.hpp"
 #include "generators/synthetic.hpp"
 #include "graph/bitgraph.hpp"
-#include "harness/builtin.hpp"
 #include "harness/harness.hpp"
+#include "registered_solvers.hpp"
 #include "reports/report.hpp"
 #include "solvers/detail/graph_stage.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
 namespace {
-
-class Registered : public ::testing::Environment {
- public:
-  void SetUp() override { register_builtin_solvers(); }
-};
-const auto* const kRegistered = ::testing::AddGlobalTestEnvironment(new Registered);
 
 template <int Dim>
 LabeledSet<Dim> draw(int n, double ratio, std::uint64_t seed, bool negative = false,

@@ -310,16 +310,25 @@ TEST(Sequence, SelectFramesAndLiftPlanar) {
   EXPECT_TRUE(T3.isApprox(pose(3, -2, 0.4), 1e-12));
 }
 
+namespace {
+
+/// A fresh temporary folder holding poses.txt: a 220 m x 140 m block driven twice.
+fs::path block_twice_folder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  vb::write_kitti_poses((dir / "poses.txt").string(), vb::block_laps(220, 140, 2));
+  return dir;
+}
+
+}  // namespace
+
 // The command on a drawn trajectory: a 220 m x 140 m block driven twice; every map of the second
 // lap revisits one of the first. Its scores must agree with its own rows recounted here, the clique
 // must find true closures, and its loops must cut the trajectory error.
 TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
-  const std::vector<vb::Rigid<3>> path = vb::block_laps(220, 140, 2);
-  const fs::path dir = fs::temp_directory_path() / "vb_loop_cli";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  vb::write_kitti_poses((dir / "poses.txt").string(), path);
+  const fs::path dir = block_twice_folder("vb_loop_cli");
   const auto r = run_cli("loop --trajectory " + (dir / "poses.txt").string() +
                          " --pipeline 2d --solvers clique,ransac --accept count --scan-spacing 4"
                          " --lidar-columns 512 --quiet --threads 2 --out " + (dir / "out").string());
@@ -376,11 +385,7 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
 // a row is accepted with the prior exactly when it was without and its d^2 is inside.
 TEST(LoopCli, OdometryPriorOnlyGatesTheCalibratedDecisions) {
   if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
-  const std::vector<vb::Rigid<3>> path = vb::block_laps(220, 140, 2);
-  const fs::path dir = fs::temp_directory_path() / "vb_loop_prior";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  vb::write_kitti_poses((dir / "poses.txt").string(), path);
+  const fs::path dir = block_twice_folder("vb_loop_prior");
   auto run = [&](const std::string& extra, const std::string& out) {
     const auto r = run_cli("loop --trajectory " + (dir / "poses.txt").string() +
                            " --pipeline 2d --solvers clique --accept pvalue --scan-spacing 4"

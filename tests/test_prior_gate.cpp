@@ -11,19 +11,13 @@
 #include "acceptance/prior_gate.hpp"
 #include "core/random.hpp"
 #include "generators/synthetic.hpp"
-#include "harness/builtin.hpp"
 #include "harness/harness.hpp"
+#include "registered_solvers.hpp"
 #include "reports/report.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
 namespace {
-
-class Registered : public ::testing::Environment {
- public:
-  void SetUp() override { register_builtin_solvers(); }
-};
-const auto* const kRegistered = ::testing::AddGlobalTestEnvironment(new Registered);
 
 Rigid<3> rigid3(const Eigen::Vector3d& w, const Eigen::Vector3d& v) {
   Rigid<3> T = Rigid<3>::Identity();
