@@ -8,7 +8,8 @@ count; error rows are left out and counted apart.
         [--plot decisions.png]
 
 --rows prints one line per (dump, solver): expected, inliers, the null's mean and threshold,
-p-value, its range and both decisions. `uncertain` counts the calibrated decisions whose p range
+p-value, its range, d^2 of the fitted motion under the set's pose prior (`prior_d2`; "-" without
+one; the calibrated rule rejects beyond the prior gate) and both decisions. `uncertain` counts the calibrated decisions whose p range
 (the p that the null's draws cannot tell apart) holds alpha: other draws may reverse them. --plot draws ROC and precision-recall curves per solver: the
 calibrated rule over alpha (a sweep of the p-value threshold) and the count rule over K.
 """
@@ -82,9 +83,9 @@ def main():
         report_io.fail(TOOL, "no rows with an expected decision in the reports")
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     if args.rows:
-        print("| dump | expected | solver | inliers | null mean | threshold | p | p range | pvalue | "
-              "count |")
-        print("|---|---|---|---|---|---|---|---|---|---|")
+        print("| dump | expected | solver | inliers | null mean | threshold | p | p range | prior d^2 | "
+              "pvalue | count |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|")
         for r in rows:
             count_ok = r["inliers"] >= count_threshold(r, args.count)
             p_text = report_io.fmt(r.get("p_value"), ".2g")
@@ -94,6 +95,7 @@ def main():
             print(f"| {r['_name']} | {r['expected']} | {r['solver']} | {r['inliers']} | "
                   f"{report_io.fmt(r.get('null_mean'), '.1f')} | "
                   f"{report_io.fmt(r.get('null_threshold'), 'd')} | {p_text} | {rng_text} | "
+                  f"{report_io.fmt(r.get('prior_d2'), '.3g')} | "
                   f"{'accept' if r['accepted'] else 'reject'} | "
                   f"{'accept' if count_ok else 'reject'} |")
         print()

@@ -56,6 +56,22 @@ $py "$src/reports/decisions.py" "$out/neg.json" --rows --plot "$out/plots/decisi
 grep -q '^| clique | p < 0.001 | ' "$out/dec.md" && grep -q '^| clique | count >= 5/10 | ' "$out/dec.md" ||
   { echo "decisions table:"; cat "$out/dec.md"; exit 1; }
 is_png "$out/plots/decisions.png"
+# With pose priors (positives only: a negative twin has no motion to draw one around), --rows
+# shows each row's prior_d2 as the report holds it, and "-" where there is none.
+"$VERIFYBENCH" sweep --dim 3 --n 60 --outliers 0.5 --trials 2 --negatives --prior-rot-deg 1 \
+  --prior-trans 0.3 --quiet --out "$out/negp.json" >/dev/null
+$py "$src/reports/decisions.py" "$out/negp.json" --rows > "$out/decp.md"
+$py - "$out/negp.json" "$out/decp.md" <<'PY' || { echo "decisions --rows lost prior_d2"; cat "$out/decp.md"; exit 1; }
+import json, sys
+rows = json.load(open(sys.argv[1]))["results"]
+lines = [l.split("|") for l in open(sys.argv[2]) if l.startswith("| ") and " prior d^2 " not in l
+         and ("| positive |" in l or "| negative |" in l)]
+assert len(lines) == len(rows) > 0, (len(lines), len(rows))
+shown = sorted(c[9].strip() for c in lines)
+want = sorted("-" if r["prior_d2"] is None else format(r["prior_d2"], ".3g") for r in rows)
+assert shown == want, (shown, want)
+assert "-" in shown and any(s != "-" for s in shown), shown
+PY
 if $py "$src/reports/decisions.py" "$out/d.json" 2>"$out/err"; then
   echo "a report without expected decisions was scored"; exit 1
 fi
