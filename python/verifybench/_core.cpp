@@ -14,6 +14,8 @@
 #include <variant>
 
 #include "acceptance/calibration.hpp"
+#include "acceptance/prior_gate.hpp"
+#include "core/transform.hpp"
 #include "core/errors.hpp"
 #include "datasets/dump_format.hpp"
 #include "generators/synthetic.hpp"
@@ -86,10 +88,38 @@ py::array_t<double> rows(const Eigen::Matrix<double, Dim, Eigen::Dynamic>& m) {
   return out;
 }
 
+/// The pose prior of solve(): prior_T a (dim+1) x (dim+1) motion (checked as published_rigid
+/// checks a file's), prior_cov the dof x dof covariance of its left perturbation; both or neither.
+template <int Dim>
+std::optional<vb::PosePrior<Dim>> pose_prior(const std::optional<Array>& T,
+                                             const std::optional<Array>& cov) {
+  if (!T && !cov) return std::nullopt;
+  if (!T || !cov) throw std::invalid_argument("prior_T and prior_cov come together");
+  constexpr int kDof = vb::kPoseDof<Dim>;
+  if (T->ndim() != 2 || T->shape(0) != Dim + 1 || T->shape(1) != Dim + 1) {
+    throw std::invalid_argument("prior_T must be a " + std::to_string(Dim + 1) + " x " +
+                                std::to_string(Dim + 1) + " matrix");
+  }
+  if (cov->ndim() != 2 || cov->shape(0) != kDof || cov->shape(1) != kDof) {
+    throw std::invalid_argument("prior_cov must be a " + std::to_string(kDof) + " x " +
+                                std::to_string(kDof) + " matrix");
+  }
+  Eigen::Matrix<double, Dim + 1, Dim + 1> M;
+  for (int i = 0; i <= Dim; ++i)
+    for (int j = 0; j <= Dim; ++j) M(i, j) = T->at(i, j);
+  vb::PosePrior<Dim> prior;
+  prior.T_target_source = vb::published_rigid<Dim>(M, "prior_T").T;
+  for (int i = 0; i < kDof; ++i)
+    for (int j = 0; j < kDof; ++j) prior.covariance(i, j) = cov->at(i, j);
+  return prior;  // the covariance is checked by validate(correspondences)
+}
+
 template <int Dim>
 py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
-                   const std::optional<Array>& scores, const vb::SolverParams& params) {
+                   const std::optional<Array>& scores, const std::optional<Array>& prior_T,
+                   const std::optional<Array>& prior_cov, const vb::SolverParams& params) {
   vb::Correspondences<Dim> corr;
+  corr.prior = pose_prior<Dim>(prior_T, prior_cov);
   corr.source = columns<Dim>(src, "src");
   corr.target = columns<Dim>(dst, "dst");
   if (scores) {
@@ -142,6 +172,8 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["null_threshold"] =
       calibration ? py::object(py::int_(calibration->threshold)) : py::object(py::none());
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;
+  const auto d2 = vb::prior_distance2(corr, result.T_target_source);
+  out["prior_d2"] = d2 ? py::object(py::float_(*d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
   return out;
 }
@@ -149,7 +181,9 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
 py::dict solve(const std::string& name, const Array& src, const Array& dst, double eps,
                std::optional<double> inlier_threshold, int min_inliers, double time_limit,
                std::uint64_t seed, int threads, const std::string& accept, double alpha,
-               int null_draws, int max_null_draws, const std::optional<Array>& scores) {
+               int null_draws, int max_null_draws, double prior_gate,
+               const std::optional<Array>& scores, const std::optional<Array>& prior_T,
+               const std::optional<Array>& prior_cov) {
   const int dim = dimension_of(src, dst);
   vb::SolverParams params;
   params.eps = eps;
@@ -162,9 +196,10 @@ py::dict solve(const std::string& name, const Array& src, const Array& dst, doub
   params.accept.alpha = alpha;
   params.accept.null_draws = null_draws;
   params.accept.max_null_draws = max_null_draws;
+  params.accept.prior_gate = prior_gate;
   params.validate();
-  return dim == 2 ? solve_dim<2>(name, src, dst, scores, params)
-                  : solve_dim<3>(name, src, dst, scores, params);
+  return dim == 2 ? solve_dim<2>(name, src, dst, scores, prior_T, prior_cov, params)
+                  : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, params);
 }
 
 template <int Dim>
@@ -235,11 +270,16 @@ PYBIND11_MODULE(_core, m) {
         py::arg("eps") = 0.1, py::arg("inlier_threshold") = py::none(), py::arg("min_inliers") = 0,
         py::arg("time_limit") = 60.0, py::arg("seed") = 1, py::arg("threads") = 1,
         py::arg("accept") = "count", py::arg("alpha") = 0.001, py::arg("null_draws") = 20,
-        py::arg("max_null_draws") = 100, py::arg("scores") = py::none(),
+        py::arg("max_null_draws") = 100, py::arg("prior_gate") = 0.999,
+        py::arg("scores") = py::none(), py::arg("prior_T") = py::none(),
+        py::arg("prior_cov") = py::none(),
         "Runs one registered solver on correspondences src[i] -> dst[i] ((n, 2) or (n, 3) arrays).\n"
         "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
         "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value.\n"
-        "accept='count' (the paper's rule, min_inliers; 0 = 5 in 3D, 10 in 2D) or 'pvalue'.");
+        "accept='count' (the paper's rule, min_inliers; 0 = 5 in 3D, 10 in 2D) or 'pvalue'.\n"
+        "prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1) guess and the 3 x 3 / 6 x 6\n"
+        "covariance of its left perturbation), both or neither; under 'pvalue' a motion outside its\n"
+        "chi-square gate at prior_gate is not accepted; prior_d2 is the fitted motion's d^2.");
   m.def("synthetic", &synthetic, py::kw_only(), py::arg("n") = 500, py::arg("outliers") = 0.5,
         py::arg("noise") = 0.01, py::arg("dim") = 3, py::arg("seed") = 1,
         py::arg("kind") = "uniform", py::arg("extent") = 10.0, py::arg("negative") = false,

@@ -26,7 +26,10 @@ def solve(
     alpha: float = 0.001,
     null_draws: int = 20,
     max_null_draws: int = 100,
+    prior_gate: float = 0.999,
     scores: Optional[npt.ArrayLike] = None,
+    prior_T: Optional[npt.ArrayLike] = None,
+    prior_cov: Optional[npt.ArrayLike] = None,
 ) -> Dict[str, Any]: ...
 def synthetic(
     *,

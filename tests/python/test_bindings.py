@@ -99,6 +99,40 @@ def test_calibrated_rule_accepts_a_loop_and_rejects_a_negative():
     assert not a["null_screened"] and not b["null_screened"] and not count["null_screened"]
 
 
+def test_pose_prior_gates_the_calibrated_rule():
+    # The loop's own motion as prior (sigmas 2 deg, 0.5 m): accepted, d^2 = delta^T P^-1 delta by
+    # hand from the returned T. Turned 90 deg about z and 20 m off: rejected under 'pvalue',
+    # accepted without the gate and under the count rule.
+    s = vb.synthetic(n=300, outliers=0.5, dim=3, seed=3)
+    cov = np.diag([np.radians(2.0) ** 2] * 3 + [0.25] * 3)
+    a = vb.solve("clique", s["src"], s["dst"], eps=0.1, accept="pvalue", prior_T=s["T"], prior_cov=cov)
+    assert a["accepted"]
+    E = a["T"] @ np.linalg.inv(s["T"])
+    angle = np.arccos(np.clip((np.trace(E[:3, :3]) - 1) / 2, -1, 1))
+    w = np.array([E[2, 1] - E[1, 2], E[0, 2] - E[2, 0], E[1, 0] - E[0, 1]])
+    w = w * (angle / (2 * np.sin(angle))) if angle > 1e-12 else w / 2
+    delta = np.concatenate([w, E[:3, 3]])
+    assert abs(a["prior_d2"] - delta @ np.linalg.solve(cov, delta)) <= 1e-6 * max(1.0, a["prior_d2"])
+    off = np.eye(4)
+    off[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]
+    off[0, 3] = 20.0
+    far = off @ s["T"]
+    b = vb.solve("clique", s["src"], s["dst"], eps=0.1, accept="pvalue", prior_T=far, prior_cov=cov)
+    assert not b["accepted"] and b["p_value"] < 0.001 and b["prior_d2"] > 400
+    assert vb.solve("clique", s["src"], s["dst"], eps=0.1, accept="pvalue", prior_T=far,
+                    prior_cov=cov, prior_gate=0.0)["accepted"]
+    assert vb.solve("clique", s["src"], s["dst"], eps=0.1, prior_T=far, prior_cov=cov)["accepted"]
+    assert vb.solve("clique", s["src"], s["dst"], eps=0.1)["prior_d2"] is None
+    with pytest.raises(ValueError, match="come together"):
+        vb.solve("clique", s["src"], s["dst"], prior_T=far)
+    with pytest.raises(ValueError, match="prior_cov must be a 6 x 6"):
+        vb.solve("clique", s["src"], s["dst"], prior_T=far, prior_cov=np.eye(3))
+    with pytest.raises(ValueError, match="positive definite"):
+        vb.solve("clique", s["src"], s["dst"], prior_T=far, prior_cov=-cov)
+    with pytest.raises(ValueError, match="prior_T"):
+        vb.solve("clique", s["src"], s["dst"], prior_T=2 * far, prior_cov=cov)
+
+
 def test_generators_are_seeded():
     a = vb.synthetic(n=50, seed=3)
     b = vb.synthetic(n=50, seed=3)
