@@ -14,8 +14,6 @@ namespace verifybench {
 
 using json = nlohmann::json;
 
-namespace {
-
 Rigid<2> planar(const Rigid<3>& T) {
   Rigid<2> out = Rigid<2>::Identity();
   const double yaw = std::atan2(T.linear()(1, 0), T.linear()(0, 0));
@@ -23,6 +21,8 @@ Rigid<2> planar(const Rigid<3>& T) {
   out.translation() = T.translation().head<2>();
   return out;
 }
+
+namespace {
 
 template <int Dim>
 LabeledSet<Dim> assemble(const Features& s, const Features& t, const std::vector<FeatureMatch>& m,

@@ -49,6 +49,10 @@ std::vector<PipelineInfo> list_pipelines();
 /// One scan's features, by pipeline; UnknownName for an unknown one.
 Features extract_features(const Cloud& cloud, const ExtractParams& params);
 
+/// The planar part of a motion: its yaw (rotation about z) and x-y translation, the frame of the
+/// 2D pipeline's sets.
+Rigid<2> planar(const Rigid<3>& T);
+
 /// Source features matched into target features; T (3D, for the 2D pipeline reduced to its yaw
 /// and x-y translation) labels them. Provenance: inputs are the caller's; this adds parameters,
 /// counts and timings.

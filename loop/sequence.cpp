@@ -41,9 +41,7 @@ void attach_odometry_prior(Dump& dump, const std::vector<LocalMap>& maps, const 
         constexpr int Dim = std::decay_t<decltype(set.corr.source)>::RowsAtCompileTime;
         PosePrior<Dim> prior;
         if constexpr (Dim == 2) {
-          prior.T_target_source.linear() =
-              Eigen::Rotation2Dd(std::atan2(T0.linear()(1, 0), T0.linear()(0, 0))).toRotationMatrix();
-          prior.T_target_source.translation() = T0.translation().head<2>();
+          prior.T_target_source = planar(T0);
           prior.covariance = Eigen::Vector3d(sigma(2), sigma(3), sigma(4)).cwiseAbs2().asDiagonal();
         } else {
           prior.T_target_source = T0;
