@@ -1,9 +1,15 @@
 // `verifybench loop`: loop closure on a sequence (issue #14), simulated along a trajectory or on a
 // KITTI-layout folder of scans; see loop/sequence.hpp.
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "apps/cli.hpp"
 #ifdef VERIFYBENCH_HAVE_LOOP
+#include "apps/param_options.hpp"
+#include "frontend/params.hpp"
 #include "harness/progress.hpp"
 #include "loop/loop_report.hpp"
 #endif
@@ -13,22 +19,31 @@ namespace verifybench {
 #ifdef VERIFYBENCH_HAVE_LOOP
 namespace {
 
+std::string source_names() {
+  std::string names;
+  for (const auto& info : list_sources()) names += (names.empty() ? "" : ", ") + info.name;
+  return names;
+}
+
 void add_loop_options(Options& o) {
   o.group("sequence")
       .add("trajectory", "FILE", "",
            "KITTI poses (one row-major 3x4 a line): scans are simulated along it")
       .add("trajectory-frame", "F", "velodyne",
-           "velodyne, or camera (KITTI odometry's poses.txt; needs --calib)")
+           "--trajectory's frame: velodyne, or camera (KITTI odometry's poses.txt; needs --calib)")
       .add("calib", "FILE", "", "KITTI calib.txt whose `Tr:` line maps Velodyne into camera")
       .add("sequence", "DIR", "",
-           "real scans: DIR/velodyne/NNNNNN.bin, DIR/poses.txt (camera frame), DIR/calib.txt")
+           "a recorded sequence: a folder (or a CARMEN log) in one of the layouts of "
+           "--sequence-format")
+      .add("sequence-format", "F", "", "the layout: " + source_names() + " (default: detected)")
+      .add("poses-file", "FILE", "", "folder layout: its TUM or KITTI poses file")
+      .add("sensor", "NAME", "", "helipr: Ouster, Velodyne, Aeva or Avia (default: the one there)")
+      .add("reference", "FILE", "",
+           "ground truth when the sequence's own poses are not: a TUM or KITTI file (matched to "
+           "the scans by stamp, else by index), or for carmen a corrected log")
       .add("first-frame", "I", "0", "first frame of the excerpt")
       .add("last-frame", "I", "-1", "last frame of the excerpt (-1 = the end)")
-      .add("scan-spacing", "M", "2", "use a scan every M metres of travel")
-      .add("pipeline", "3d|2d", "3d", "3d: ISS + B-SHOT on each map; 2d: bird's-eye view + ORB")
-      .add("bev-range", "M", "80",
-           "2d: half side of a map's bird's-eye image (ORB ignores a 15 m border: a 100 m map "
-           "with 80 m of LiDAR range around it needs more than the 50 m of one scan)");
+      .add("scan-spacing", "M", "2", "use a scan every M metres of travel");
   o.group("simulated world and LiDAR (without --sequence)")
       .add("lidar-beams", "K", "64", "beams, evenly from +2 to -24.8 deg")
       .add("lidar-columns", "K", "1024", "azimuth steps a sweep")
@@ -38,9 +53,12 @@ void add_loop_options(Options& o) {
       .add("world-building-density", "P", "0.2", "chance of a building in a block cell")
       .add("world-kerb-density", "P", "0.45", "chance of a pole, tree, car or clutter in a kerb cell");
   o.group("odometry")
-      .add("odometry", "drift|gicp", "drift",
+      .add("odometry", "drift|gicp|poses|log", "drift",
            "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to the "
-           "last --gicp-map-scans scans")
+           "last --gicp-map-scans scans; poses: --odometry-file (e.g. KISS-ICP's output); log: "
+           "the recording's own (a CARMEN log's odometry)")
+      .add("odometry-file", "FILE", "", "poses: a TUM or KITTI file, matched to the scans by "
+                                         "stamp, else by index")
       .add("gicp-map-scans", "K", "1", "gicp: scans in the local map (1 = scan to scan)")
       .add("gicp-voxel", "M", "1", "gicp: scans downsampled to this voxel")
       .add("gicp-max-distance", "M", "1", "gicp: correspondence distance")
@@ -53,22 +71,64 @@ void add_loop_options(Options& o) {
       .add("min-map-gap", "K", "3", "maps fewer than K apart are not compared")
       .add("candidates", "K", "2", "maps verified per query (most HBST votes)")
       .add("min-votes", "K", "5", "fewer votes: not a candidate")
+      .add("retrieval", "KIND", "auto",
+           "hbst (binary descriptors), kdtree (fpfh), all (every older map; small sequences); "
+           "auto: hbst or kdtree by the pipeline")
       .add("exact-retrieval", "", "",
            "HBST votes by the true nearest descriptor (backtracking) instead of one leaf")
-      .add("max-hamming", "BITS", "50", "HBST votes and matches within this distance")
-      .add("matching", "POLICY", "nearest",
-           "nearest, mutual, knn:K, or radius (every match within --max-hamming, as an HBST "
-           "query returns them: the paper's setting)")
-      .add("max-matches", "N", "5000", "cap a pair's correspondences (seeded; 0 = none)")
       .add("gt-overlap", "F", "0.5", "true closure: occupancy overlap above F of the smaller map")
       .add("gt-max-distance", "M", "100", "true closure: anchors closer than M")
       .add("pose-tolerance", "M", "6", "correct closure: relative translation error under M")
       .add("loop-sigma-trans", "M", "0.5", "pose graph: loop edge translation sigma")
       .add("loop-sigma-rot-deg", "DEG", "2", "pose graph: loop edge rotation sigma")
+      .add("dense-overlap", "F", "0",
+           "dense check after the accept rule: ICP from the fitted motion, then accept only when "
+           "the maps' occupied cells overlap by more than F of the smaller map (0 = off, the "
+           "paper's setting)")
+      .add("dense-cell", "M", "0.5", "dense check: overlap cell size")
+      .add("dense-icp-voxel", "M", "0.5", "dense check: both maps voxelised for ICP")
+      .add("dense-icp-distance", "M", "1", "dense check: ICP correspondence distance")
       .add("odometry-prior", "", "",
            "each candidate carries odometry's motion as a pose prior (drift-model sigmas of the "
            "travel between the maps): the pvalue rule's --prior-gate and jcbb's prior mode use it");
+  o.group("front end of each local map (the same options as `verifybench extract`; --max-hamming "
+          "and --max-feature-distance also bound retrieval's votes)");
+  cli::add_rows(o, frontend_param_rows(), loop_extract_defaults());
   cli::add_solver_options(o, {"1", "DIR", "report folder: loop.json and loop.md (required)"});
+}
+
+/// A poses file's poses, one per scan: by nearest stamp (within 0.05 s) where the file has stamps
+/// that fall in the scans' span, else by index (equal counts).
+Trajectory frames_of(const StampedTrajectory& file, const std::vector<double>& stamps,
+                     const std::string& path) {
+  const bool by_stamp = !file.stamps.empty() && !stamps.empty() &&
+                        file.stamps.front() <= stamps.back() + 0.05 &&
+                        stamps.front() <= file.stamps.back() + 0.05;
+  if (!by_stamp) {
+    if (!stamps.empty() && file.poses.size() != stamps.size()) {
+      input_error(path, 0, std::to_string(file.poses.size()) + " poses for " +
+                               std::to_string(stamps.size()) +
+                               " scans (no stamps to match them by)");
+    }
+    return file.poses;
+  }
+  Trajectory out;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    const auto it = std::lower_bound(file.stamps.begin(), file.stamps.end(), stamps[i]);
+    std::size_t best = it == file.stamps.end() ? file.stamps.size() - 1
+                                               : static_cast<std::size_t>(it - file.stamps.begin());
+    if (best > 0 && std::abs(file.stamps[best - 1] - stamps[i]) < std::abs(file.stamps[best] - stamps[i])) {
+      --best;
+    }
+    if (std::abs(file.stamps[best] - stamps[i]) > 0.05) {
+      std::ostringstream msg;
+      msg << std::setprecision(17) << "no pose within 0.05 s of scan " << i << " (stamp "
+          << stamps[i] << ")";
+      input_error(path, 0, msg.str());
+    }
+    out.push_back(file.poses[best]);
+  }
+  return out;
 }
 
 LoopConfig loop_config(const Options& o) {
@@ -77,22 +137,65 @@ LoopConfig loop_config(const Options& o) {
   if (has_trajectory == has_sequence) {
     throw UsageError("give one of --trajectory FILE (simulated scans) or --sequence DIR");
   }
-  Trajectory poses;
-  std::string frame = o.text("trajectory-frame");
-  std::string calib = o.text("calib");
+  Trajectory poses, odometry_poses;
+  std::vector<double> stamps;
   if (has_sequence) {
     c.sequence_dir = o.text("sequence");
-    poses = read_kitti_poses(c.sequence_dir + "/poses.txt");
-    if (!o.given("trajectory-frame")) frame = "camera";
-    if (calib.empty()) calib = c.sequence_dir + "/calib.txt";
+    SourceOptions so;
+    so.poses_file = o.text("poses-file");
+    so.sensor = o.text("sensor");
+    const std::string format = o.text("sequence-format");
+    so.reference = o.text("reference");  // carmen: a corrected log; the others ignore it
+    try {
+      c.source = open_sequence(c.sequence_dir, format, so);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--sequence: ") + e.what());
+    }
+    const SequenceInfo& info = c.source->info();
+    stamps = info.stamps;
+    if (o.given("reference") && info.format != "carmen") {
+      poses = frames_of(read_poses_file(o.text("reference")), stamps, o.text("reference"));
+      c.reference = o.text("reference");
+    } else if (!info.poses.empty()) {
+      poses = info.poses;
+      c.reference = info.poses_file;
+    } else {
+      throw UsageError("--sequence: " + c.sequence_dir + " (" + info.format +
+                       ") carries no reference poses: give --reference FILE");
+    }
+    if (o.text("odometry") == "log") {
+      if (info.odometry.empty()) {
+        throw UsageError("--odometry log: " + c.sequence_dir + " (" + info.format +
+                         ") logs no odometry");
+      }
+      odometry_poses = info.odometry;
+    }
   } else {
+    if (o.given("reference") || o.given("sequence-format") || o.given("poses-file")) {
+      throw UsageError("--reference, --sequence-format and --poses-file go with --sequence");
+    }
     poses = read_kitti_poses(o.text("trajectory"));
+    std::string frame = o.text("trajectory-frame");
+    if (frame == "camera") {
+      if (!o.given("calib")) throw UsageError("--trajectory-frame camera needs --calib FILE");
+      poses = camera_to_velodyne(poses, read_kitti_calib_tr(o.text("calib")));
+    } else if (frame != "velodyne") {
+      throw UsageError("--trajectory-frame: '" + frame + "' is not velodyne or camera");
+    }
+    c.reference = o.text("trajectory");
+    if (o.text("odometry") == "log") throw UsageError("--odometry log needs a --sequence");
   }
-  if (frame == "camera") {
-    if (calib.empty()) throw UsageError("--trajectory-frame camera needs --calib FILE");
-    poses = camera_to_velodyne(poses, read_kitti_calib_tr(calib));
-  } else if (frame != "velodyne") {
-    throw UsageError("--trajectory-frame: '" + frame + "' is not velodyne or camera");
+  if (o.text("odometry") == "poses") {
+    if (!o.given("odometry-file")) throw UsageError("--odometry poses needs --odometry-file FILE");
+    odometry_poses = frames_of(read_poses_file(o.text("odometry-file")), stamps,
+                               o.text("odometry-file"));
+  } else if (o.given("odometry-file")) {
+    throw UsageError("--odometry-file goes with --odometry poses");
+  }
+  if (odometry_poses.size() != 0 && odometry_poses.size() != poses.size()) {
+    throw UsageError("--odometry " + o.text("odometry") + ": " +
+                     std::to_string(odometry_poses.size()) + " poses for " +
+                     std::to_string(poses.size()) + " scans");
   }
   const long long n = static_cast<long long>(poses.size());
   const long long first = o.integer("first-frame", 0, n - 1);
@@ -103,17 +206,13 @@ LoopConfig loop_config(const Options& o) {
                      std::to_string(first));
   }
   c.truth.assign(poses.begin() + first, poses.begin() + last + 1);
+  if (!odometry_poses.empty()) {
+    c.odometry_poses.assign(odometry_poses.begin() + first, odometry_poses.begin() + last + 1);
+  }
+  if (!stamps.empty()) c.stamps.assign(stamps.begin() + first, stamps.begin() + last + 1);
   c.first_frame = static_cast<int>(first);
   c.scan_spacing = o.real("scan-spacing", 1e-3, 1e6);
-  c.extract.pipeline = o.text("pipeline");
-  c.extract.p2.bev.range = o.real("bev-range", 1.0, 1e4);
-  try {
-    c.extract.matching = parse_matching(o.text("matching"));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("--matching: ") + e.what());
-  }
-  c.extract.max_hamming = static_cast<int>(o.integer("max-hamming", 0, 4096));
-  c.extract.max_matches = static_cast<std::size_t>(o.integer("max-matches", 0, 1LL << 40));
+  cli::read_rows(o, frontend_param_rows(), c.extract);
   c.lidar.beams = static_cast<int>(o.integer("lidar-beams", 1, 1024));
   c.lidar.columns = static_cast<int>(o.integer("lidar-columns", 1, 100000));
   c.lidar.max_range = o.real("lidar-max-range", 3.0, 1e4);
@@ -122,8 +221,9 @@ LoopConfig loop_config(const Options& o) {
   c.world.building_density = o.real("world-building-density", 0.0, 1.0);
   c.world.kerb_density = o.real("world-kerb-density", 0.0, 1.0);
   c.odometry = o.text("odometry");
-  if (c.odometry != "drift" && c.odometry != "gicp") {
-    throw UsageError("--odometry: '" + c.odometry + "' is not drift or gicp");
+  if (c.odometry != "drift" && c.odometry != "gicp" && c.odometry != "poses" &&
+      c.odometry != "log") {
+    throw UsageError("--odometry: '" + c.odometry + "' is not drift, gicp, poses or log");
   }
   c.gicp.voxel = o.real("gicp-voxel", 0.01, 100.0);
   c.gicp.max_correspondence = o.real("gicp-max-distance", 0.01, 1000.0);
@@ -137,11 +237,16 @@ LoopConfig loop_config(const Options& o) {
   c.retrieval.candidates = static_cast<int>(o.integer("candidates", 1, 1 << 20));
   c.retrieval.min_votes = static_cast<int>(o.integer("min-votes", 1, 1 << 30));
   c.retrieval.exact = o.flag("exact-retrieval");
+  c.retrieval.method = o.text("retrieval");
   c.gt_overlap = o.real("gt-overlap", 1e-6, 1.0);
   c.gt_max_distance = o.real("gt-max-distance", 1e-6, 1e9);
   c.pose_tolerance = o.real("pose-tolerance", 1e-6, 1e9);
   c.loop_sigma_trans = o.real("loop-sigma-trans", 1e-6, 1e6);
   c.odometry_prior = o.flag("odometry-prior");
+  c.dense.min_overlap = o.real("dense-overlap", 0.0, 0.999);
+  c.dense.cell = o.real("dense-cell", 1e-3, 1e3);
+  c.dense.icp.voxel = o.real("dense-icp-voxel", 1e-3, 1e3);
+  c.dense.icp.max_correspondence = o.real("dense-icp-distance", 1e-3, 1e3);
   c.loop_sigma_rot_deg = o.real("loop-sigma-rot-deg", 1e-6, 180.0);
   c.solvers = cli::solver_names(o);
   c.params = cli::solver_params(o);
@@ -162,12 +267,15 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
   p["threads"] = c.threads;
   p["loop"] = {{"trajectory", o.text("trajectory")},
                {"sequence", c.sequence_dir},
+               {"sequence_format", c.source ? c.source->info().format : ""},
+               {"sequence_note", c.source ? c.source->info().note : ""},
+               {"reference", c.reference},
+               {"odometry_file", o.text("odometry-file")},
                {"trajectory_frame", o.text("trajectory-frame")},
                {"first_frame", c.first_frame},
                {"frames", c.truth.size()},
                {"scan_spacing_m", c.scan_spacing},
-               {"pipeline", c.extract.pipeline},
-               {"bev_range_m", c.extract.p2.bev.range},
+               {"frontend", cli::rows_json(frontend_param_rows(), c.extract)},
                {"map_length_m", c.maps.map_length},
                {"map_voxel_m", c.maps.voxel},
                {"occupancy_voxel_m", c.maps.occupancy_voxel},
@@ -175,15 +283,18 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"candidates", c.retrieval.candidates},
                {"min_votes", c.retrieval.min_votes},
                {"exact_retrieval", c.retrieval.exact},
-               {"max_hamming", c.extract.max_hamming},
-               {"max_matches", c.extract.max_matches},
-               {"matching", c.extract.matching.name()},
+               {"retrieval", c.retrieval.method},
                {"gt_overlap", c.gt_overlap},
                {"gt_max_distance_m", c.gt_max_distance},
                {"pose_tolerance_m", c.pose_tolerance},
                {"loop_sigma_trans_m", c.loop_sigma_trans},
                {"loop_sigma_rot_deg", c.loop_sigma_rot_deg},
                {"odometry_prior", c.odometry_prior},
+               {"dense_check", {{"min_overlap", c.dense.min_overlap},
+                                {"cell_m", c.dense.cell},
+                                {"icp_voxel_m", c.dense.icp.voxel},
+                                {"icp_max_distance_m", c.dense.icp.max_correspondence},
+                                {"icp_max_iterations", c.dense.icp.max_iterations}}},
                {"odometry", c.odometry},
                {"gicp", {{"voxel_m", c.gicp.voxel},
                          {"max_correspondence_m", c.gicp.max_correspondence},
@@ -193,7 +304,7 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                           {"yaw_deg_per_sqrt_m", c.drift.yaw_deg},
                           {"tilt_deg_per_sqrt_m", c.drift.tilt_deg}}},
                {"solvers", c.solvers}};
-  if (c.sequence_dir.empty()) {
+  if (!c.source) {
     p["loop"]["lidar"] = {{"beams", c.lidar.beams},           {"columns", c.lidar.columns},
                           {"fov_up_deg", c.lidar.fov_up_deg}, {"fov_down_deg", c.lidar.fov_down_deg},
                           {"min_range_m", c.lidar.min_range}, {"max_range_m", c.lidar.max_range},
@@ -241,6 +352,7 @@ int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string
       loop_report(config, run, make_context(argv, config.seed), loop_parameters(o, config));
   const std::string md = loop_markdown(config, run);
   write_loop_report(dir, report, md);
+  write_loop_trajectories(dir, config, run);
   if (!quiet) std::cerr << md;
   std::cout << dir << "/loop.json\n";
   for (const ClosureRow& r : run.rows) {

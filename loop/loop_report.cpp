@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/metrics.hpp"
 #include "reports/report.hpp"
 
 namespace verifybench {
@@ -106,6 +107,19 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
     row["closure_rotation_error_deg"] = r.rotation_error_deg;
     row["T_match_query_estimate"] = matrix_json(r.T_estimate);
     row["T_match_query_truth"] = matrix_json(r.T_truth);
+    row["rule_accepted"] = r.rule_accepted;
+    if (r.dense.ran) {
+      row["dense_check"] = {{"overlap", r.dense.overlap},
+                            {"icp_converged", r.dense.icp.converged},
+                            {"icp_fitness_m2", r.dense.icp.fitness},
+                            {"refined_translation_error_m",
+                             (r.T_estimate.translation() - r.T_truth.translation()).norm()},
+                            {"refined_rotation_error_deg",
+                             rotation_error_deg<3>(r.T_estimate, r.T_truth)},
+                            {"T_match_query_refined", matrix_json(r.dense.icp.T_target_source)}};
+    } else {
+      row["dense_check"] = nullptr;
+    }
     closures.push_back(row);
   }
   json summary = json::array(), curves = json::object();
@@ -203,6 +217,22 @@ void check_loop_dir(const std::string& dir) {
   make_folder(dir);
   check_report_path(dir + "/loop.json");
   check_report_path(dir + "/loop.md");
+}
+
+void write_loop_trajectories(const std::string& dir, const LoopConfig& config, const LoopRun& run) {
+  const std::string folder = dir + "/trajectories";
+  make_folder(folder);
+  std::vector<double> stamps;
+  for (int f : run.frames) {
+    stamps.push_back(config.stamps.empty() ? static_cast<double>(f + config.first_frame)
+                                           : config.stamps[static_cast<std::size_t>(f)]);
+  }
+  write_tum_poses(folder + "/reference.tum", stamps, run.truth);
+  write_tum_poses(folder + "/odometry.tum", stamps, run.odometry);
+  for (const SolverSummary& s : run.summary) {
+    write_tum_poses(folder + "/" + s.solver + ".tum", stamps, s.poses_with);
+    write_tum_poses(folder + "/" + s.solver + "_robust.tum", stamps, s.poses_with_robust);
+  }
 }
 
 void write_loop_report(const std::string& dir, const json& report, const std::string& markdown) {

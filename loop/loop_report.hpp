@@ -8,6 +8,10 @@
 //                curves: {solver: {count: [...], alpha: [...]}},
 //                trajectories: {frames, truth, odometry, <solver>, <solver>+robust: [[x, y, z]...]} }
 //   loop.md    the summary in the layout of the paper's Tables I and II
+//   trajectories/{reference,odometry,<solver>,<solver>_robust}.tum  every scan used, in the TUM
+//              format evo reads as it is (stamp tx ty tz qx qy qz qw): the reference, the
+//              odometry (without loops), and each solver's pose graph with its loops, plain and
+//              with the robust loss
 // Both written atomically (reports/report.hpp); reports/plot_loop.py draws the PNGs from loop.json.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -26,6 +30,9 @@ std::string loop_markdown(const LoopConfig& config, const LoopRun& run);
 /// Throws std::runtime_error naming the path.
 void write_loop_report(const std::string& dir, const nlohmann::json& report,
                        const std::string& markdown);
+/// Writes DIR/trajectories/*.tum (the folder is created); stamps are the sequence's, else the
+/// frame indices. Throws std::runtime_error naming the path.
+void write_loop_trajectories(const std::string& dir, const LoopConfig& config, const LoopRun& run);
 /// Checks before the work that DIR is (or can become) a writable folder whose loop.json and
 /// loop.md can be written; throws std::runtime_error naming the path.
 void check_loop_dir(const std::string& dir);

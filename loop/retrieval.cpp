@@ -1,10 +1,35 @@
 #include "loop/retrieval.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "core/registry.hpp"
+
 namespace verifybench {
+
+namespace {
+
+Registry<RetrieverInfo>& retrievers() {
+  static Registry<RetrieverInfo>* registry = [] {
+    auto* r = new Registry<RetrieverInfo>("retriever", Registry<RetrieverInfo>::Order::as_added);
+    r->add({"hbst", "binary descriptors: votes by the nearest within --max-hamming (HBST)",
+            hbst_votes, true});
+    r->add({"kdtree", "real descriptors (fpfh): votes by the nearest in feature space (k-d tree)",
+            kdtree_votes, true});
+    r->add({"all", "every older map beyond --min-map-gap (small sequences)",
+            [](const std::vector<Features>& maps, const RetrievalParams&) {
+              return std::vector<std::vector<int>>(maps.size(),
+                                                   std::vector<int>(maps.size(), 0));
+            },
+            false});
+    return r;
+  }();
+  return *registry;
+}
+
+}  // namespace
 
 void RetrievalParams::validate() const {
   auto check = [](const char* name, int v, int lo) {
@@ -17,47 +42,44 @@ void RetrievalParams::validate() const {
   check("min_votes", min_votes, 1);
   check("max_hamming", max_hamming, 0);
   check("min_map_gap", min_map_gap, 1);
+  if (!(max_feature_distance >= 0.0)) {
+    throw std::invalid_argument("retrieval: max_feature_distance must be >= 0, got " +
+                                std::to_string(max_feature_distance));
+  }
+  if (method != "auto" && !retrievers().contains(method)) {
+    throw std::invalid_argument("retrieval: unknown retriever '" + method +
+                                "' (known: auto, " + retrievers().known() + ")");
+  }
+}
+
+std::vector<RetrieverInfo> list_retrievers() { return retrievers().list(); }
+
+std::string resolve_retriever(const std::vector<Features>& maps, const RetrievalParams& params) {
+  if (params.method != "auto") return params.method;
+  for (const Features& f : maps) {
+    if (f.real.dims > 0) return "kdtree";
+  }
+  return "hbst";
 }
 
 std::vector<Candidate> retrieve_candidates(const std::vector<Features>& maps,
                                            const RetrievalParams& params) {
   params.validate();
+  const RetrieverInfo& info = retrievers().get(resolve_retriever(maps, params));
+  const auto votes = info.votes(maps, params);
   std::vector<Candidate> out;
-  int bits = -1;
-  for (const auto& f : maps) {
-    if (f.descriptors.size() == 0) continue;
-    if (bits >= 0 && f.descriptors.bits != bits) {
-      throw std::invalid_argument("retrieval: descriptors of " + std::to_string(bits) + " and " +
-                                  std::to_string(f.descriptors.bits) + " bits");
-    }
-    bits = f.descriptors.bits;
-  }
-  if (bits < 0) return out;
-  HbstTree tree(bits, params.hbst);
-  std::vector<int> owner;  // database descriptor id -> map
-  int inserted = 0;
-  for (int q = 0; q < static_cast<int>(maps.size()); ++q) {
-    for (; inserted <= q - params.min_map_gap; ++inserted) {
-      const BinaryDescriptors& d = maps[inserted].descriptors;
-      if (d.size() == 0) continue;
-      tree.insert(d);
-      owner.insert(owner.end(), d.size(), inserted);
-    }
-    if (tree.size() == 0 || maps[q].descriptors.size() == 0) continue;
-    std::vector<int> votes(maps.size(), 0);
-    const BinaryDescriptors& d = maps[q].descriptors;
-    for (int k = 0; k < d.size(); ++k) {
-      const BinaryMatch m = tree.nearest(d.row(k), params.max_hamming, params.exact);
-      if (m.index >= 0) ++votes[owner[m.index]];
-    }
+  const int n = static_cast<int>(maps.size());
+  for (int q = 0; q < n; ++q) {
     std::vector<int> order;
-    for (int j = 0; j < static_cast<int>(maps.size()); ++j) {
-      if (votes[j] >= params.min_votes) order.push_back(j);
+    for (int j = 0; j + params.min_map_gap <= q; ++j) {
+      if (!info.uses_votes || votes[q][j] >= params.min_votes) order.push_back(j);
     }
     std::stable_sort(order.begin(), order.end(),
-                     [&](int a, int b) { return votes[a] > votes[b]; });
-    if (static_cast<int>(order.size()) > params.candidates) order.resize(params.candidates);
-    for (int j : order) out.push_back({q, j, votes[j]});
+                     [&](int a, int b) { return votes[q][a] > votes[q][b]; });
+    if (info.uses_votes && static_cast<int>(order.size()) > params.candidates) {
+      order.resize(params.candidates);
+    }
+    for (int j : order) out.push_back({q, j, votes[q][j]});
   }
   return out;
 }

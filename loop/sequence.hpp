@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,11 @@
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
 #include "generators/world.hpp"
+#include "loop/dense_check.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/pose_graph.hpp"
 #include "loop/retrieval.hpp"
+#include "loop/sources/source.hpp"
 #include "loop/trajectory_metrics.hpp"
 #include "reports/record.hpp"
 #include "solvers/params.hpp"
@@ -44,13 +47,20 @@ namespace verifybench {
 ExtractParams loop_extract_defaults();
 
 struct LoopConfig {
-  Trajectory truth;          ///< T_world_velodyne per frame, z up (the excerpt)
-  std::string sequence_dir;  ///< empty: simulate; else DIR/velodyne/NNNNNN.bin
+  Trajectory truth;          ///< T_world_sensor per frame, z up (the excerpt): the reference
+  std::string sequence_dir;  ///< empty: simulate; else the recorded sequence's folder or log
+  /// The recorded sequence (loop/sources): scan first_frame + i is frame i. Null: simulate.
+  std::shared_ptr<const SequenceSource> source;
   int first_frame = 0;       ///< sequence index of truth[0] (file names)
+  std::vector<double> stamps;  ///< [s] per frame (the source's; the index when simulated)
+  std::string reference = "truth";  ///< where `truth` came from, for the report
+  /// odometry "poses" (a file) and "log" (the recording's own): T_world_sensor per frame.
+  Trajectory odometry_poses;
   WorldParams world;
   LidarParams lidar;
-  /// "drift": the drift model on the true poses; "gicp": scan-to-scan GICP on the scans used
-  /// (the pose graph weighs its steps by the drift model's sigmas either way).
+  /// "drift": the drift model on the true poses; "gicp": scan-to-scan GICP on the scans used;
+  /// "poses": odometry_poses from a file (e.g. KISS-ICP's output); "log": the recording's own
+  /// (CARMEN's wheel odometry). The pose graph weighs its steps by the drift model's sigmas.
   std::string odometry = "drift";
   DriftParams drift;
   ScanOdometryParams gicp;
@@ -69,6 +79,8 @@ struct LoopConfig {
   /// odometry_sigma() of the travel between the two maps): the calibrated rule's gate
   /// (acceptance/prior_gate.hpp) and JCBB's prior mode use it. Off: the paper's setting.
   bool odometry_prior = false;
+  /// After the accept rule: ICP from the fitted motion and the maps' overlap (off by default).
+  DenseCheckParams dense;
   std::uint64_t seed = 1;
   int threads = 1;  ///< maps built in parallel; results do not depend on it
 
@@ -93,10 +105,16 @@ struct ClosureRow {
   double overlap = 0;       ///< occupancy overlap of the pair
   bool true_closure = false;
   TrialRecord record;       ///< the harness's row: inliers, accepted, times, p-value, ...
-  Rigid<3> T_estimate = Rigid<3>::Identity();  ///< match <- query, lifted to SE(3) in 2D
+  /// match <- query, lifted to SE(3) in 2D: the solver's, or ICP's refinement of it where the
+  /// dense check ran (then T_solver holds the solver's); correct and the pose graph use it.
+  Rigid<3> T_estimate = Rigid<3>::Identity();
+  Rigid<3> T_solver = Rigid<3>::Identity();
   Rigid<3> T_truth = Rigid<3>::Identity();
-  double translation_error = 0, rotation_error_deg = 0;
-  bool correct = false;  ///< true closure and translation_error < pose_tolerance
+  double translation_error = 0, rotation_error_deg = 0;  ///< of the solver's motion
+  bool correct = false;  ///< true closure and T_estimate within pose_tolerance of the truth
+  /// The accept rule's decision; record.accepted is it and the dense check's (when on).
+  bool rule_accepted = false;
+  DenseCheck dense;  ///< run on every row with a motion when the check is on
 };
 
 struct CurvePoint {

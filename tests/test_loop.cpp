@@ -11,14 +11,18 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
+#include <sstream>
 #include <algorithm>
 
 #include "datasets/trajectory.hpp"
 #include "frontend/scan_odometry.hpp"
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
+#include "core/metrics.hpp"
+#include "loop/dense_check.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/pose_graph.hpp"
+#include "loop/retrieval.hpp"
 #include "loop/sequence.hpp"
 #include "loop/trajectory_metrics.hpp"
 #include "test_util.hpp"
@@ -326,6 +330,146 @@ fs::path block_twice_folder(const std::string& name) {
 // The command on a drawn trajectory: a 220 m x 140 m block driven twice; every map of the second
 // lap revisits one of the first. Its scores must agree with its own rows recounted here, the clique
 // must find true closures, and its loops must cut the trajectory error.
+
+namespace {
+
+// Maps of descriptors where each query descriptor is a noisy copy of one random descriptor of an
+// older map (or pure noise), so the votes an exhaustive search gives are unambiguous.
+struct DrawnMaps {
+  std::vector<vb::Features> binary, real;
+};
+
+DrawnMaps draw_maps(int n_maps, int per_map, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  DrawnMaps d;
+  for (int m = 0; m < n_maps; ++m) {
+    vb::Features b, r;
+    b.descriptors = vb::BinaryDescriptors(256);
+    r.real.dims = 33;
+    for (int k = 0; k < per_map; ++k) {
+      auto* row = b.descriptors.add();
+      const bool copy = m > 0 && rng() % 3 != 0;
+      const int from_map = copy ? static_cast<int>(rng() % m) : -1;
+      const int from_row = static_cast<int>(rng() % per_map);
+      for (int w = 0; w < 4; ++w) {
+        row[w] = copy ? d.binary[from_map].descriptors.row(from_row)[w] ^ (1ull << (rng() % 64))
+                      : rng();
+      }
+      for (int j = 0; j < 33; ++j) {
+        const float noise = static_cast<float>(rng() % 1000) / 1e5f;
+        r.real.data.push_back(copy ? d.real[from_map].real.row(from_row)[j] + noise
+                                   : static_cast<float>(rng() % 100000) / 1000.0f);
+      }
+    }
+    d.binary.push_back(b);
+    d.real.push_back(r);
+  }
+  return d;
+}
+
+// The oracle: votes by exhaustive nearest-neighbour search over maps 0 .. q - gap, then the top
+// `candidates` by votes (at least min_votes; ties: the older map).
+std::vector<vb::Candidate> brute_force_candidates(const std::vector<vb::Features>& maps,
+                                                  bool real, const vb::RetrievalParams& p) {
+  std::vector<vb::Candidate> out;
+  for (int q = 0; q < static_cast<int>(maps.size()); ++q) {
+    std::vector<int> votes(maps.size(), 0);
+    const int n = real ? maps[q].real.size() : maps[q].descriptors.size();
+    for (int k = 0; k < n; ++k) {
+      double best = 1e300;
+      int owner = -1;
+      for (int m = 0; m + p.min_map_gap <= q; ++m) {
+        const int nm = real ? maps[m].real.size() : maps[m].descriptors.size();
+        for (int j = 0; j < nm; ++j) {
+          double dist = 0;
+          if (real) {
+            for (int c = 0; c < 33; ++c) {
+              const double e = maps[q].real.row(k)[c] - maps[m].real.row(j)[c];
+              dist += e * e;
+            }
+            dist = std::sqrt(dist);
+          } else {
+            dist = vb::hamming(maps[q].descriptors.row(k), maps[m].descriptors.row(j), 4);
+          }
+          if (dist < best) {
+            best = dist;
+            owner = m;
+          }
+        }
+      }
+      if (owner >= 0 && (real || best <= p.max_hamming)) ++votes[owner];
+    }
+    std::vector<int> order;
+    for (int m = 0; m + p.min_map_gap <= q; ++m) {
+      if (votes[m] >= p.min_votes) order.push_back(m);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return votes[a] > votes[b]; });
+    if (static_cast<int>(order.size()) > p.candidates) order.resize(p.candidates);
+    for (int m : order) out.push_back({q, m, votes[m]});
+  }
+  return out;
+}
+
+void expect_same(const std::vector<vb::Candidate>& a, const std::vector<vb::Candidate>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].query, b[i].query) << i;
+    EXPECT_EQ(a[i].match, b[i].match) << i;
+    EXPECT_EQ(a[i].votes, b[i].votes) << i;
+  }
+}
+
+}  // namespace
+
+TEST(Retrieval, HbstAndKdtreeVotesEqualBruteForceNearestNeighbours) {
+  const DrawnMaps d = draw_maps(7, 60, 11);
+  for (int gap : {1, 3}) {
+    vb::RetrievalParams p;
+    p.min_map_gap = gap;
+    p.candidates = 2;
+    p.min_votes = 3;
+    p.max_hamming = 60;
+    p.exact = true;  // the true nearest: exactly the brute force
+    p.method = "hbst";
+    const auto hbst = vb::retrieve_candidates(d.binary, p);
+    EXPECT_FALSE(hbst.empty());
+    expect_same(hbst, brute_force_candidates(d.binary, false, p));
+    p.method = "auto";
+    expect_same(vb::retrieve_candidates(d.binary, p), hbst);
+    p.method = "kdtree";
+    const auto kdtree = vb::retrieve_candidates(d.real, p);
+    EXPECT_FALSE(kdtree.empty());
+    expect_same(kdtree, brute_force_candidates(d.real, true, p));
+    p.method = "auto";
+    expect_same(vb::retrieve_candidates(d.real, p), kdtree);
+  }
+}
+
+TEST(Retrieval, AllListsEveryOlderMapBeyondTheGapAndKindsAreChecked) {
+  const DrawnMaps d = draw_maps(6, 5, 3);
+  vb::RetrievalParams p;
+  p.method = "all";
+  p.min_map_gap = 2;
+  p.candidates = 1;  // not a cap for `all`
+  const auto all = vb::retrieve_candidates(d.real, p);
+  std::vector<vb::Candidate> expected;
+  for (int q = 0; q < 6; ++q) {
+    for (int m = 0; m + 2 <= q; ++m) expected.push_back({q, m, 0});
+  }
+  expect_same(all, expected);
+  p.method = "hbst";
+  EXPECT_THROW(vb::retrieve_candidates(d.real, p), std::invalid_argument);
+  p.method = "kdtree";
+  EXPECT_THROW(vb::retrieve_candidates(d.binary, p), std::invalid_argument);
+  p.method = "nope";
+  try {
+    vb::retrieve_candidates(d.binary, p);
+    FAIL() << "an unknown retriever was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("known: auto, hbst, kdtree, all"), std::string::npos);
+  }
+}
+
 TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
   const fs::path dir = block_twice_folder("vb_loop_cli");
@@ -358,6 +502,31 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   EXPECT_TRUE(clique["pose_graph"]["converged"].get<bool>());
   EXPECT_TRUE(clique["pose_graph"]["converged_robust"].get<bool>());
   EXPECT_TRUE(fs::exists(dir / "out" / "loop.md"));
+  // The trajectories as TUM files (the TUM RGB-D format: "timestamp tx ty tz qx qy qz qw", a unit
+  // quaternion): the reference is the input trajectory at the frames used, stamped by frame index.
+  const auto input = vb::read_kitti_poses((dir / "poses.txt").string());
+  for (const char* name : {"reference", "odometry", "clique", "clique_robust", "ransac",
+                           "ransac_robust"}) {
+    std::ifstream tum(dir / "out" / "trajectories" / (std::string(name) + ".tum"));
+    ASSERT_TRUE(tum) << name;
+    std::size_t k = 0;
+    for (std::string line; std::getline(tum, line); ++k) {
+      std::istringstream fields(line);
+      std::vector<double> v;
+      for (double x; fields >> x;) v.push_back(x);
+      ASSERT_EQ(v.size(), 8u) << name << ": " << line;
+      ASSERT_LT(k, j["trajectories"]["frames"].size());
+      const int frame = j["trajectories"]["frames"][k].get<int>();
+      EXPECT_EQ(v[0], frame) << name;
+      EXPECT_NEAR(Eigen::Vector4d(v[4], v[5], v[6], v[7]).norm(), 1.0, 1e-8) << name;
+      if (std::string(name) == "reference") {
+        const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
+        EXPECT_LT((Eigen::Vector3d(v[1], v[2], v[3]) - input[frame].translation()).norm(), 1e-6);
+        EXPECT_LT((q.toRotationMatrix() - input[frame].linear()).norm(), 1e-7);
+      }
+    }
+    EXPECT_EQ(k, j["trajectories"]["frames"].size()) << name;
+  }
   // The plot script draws one trajectory per solver and the precision-recall curves.
   if (fs::exists("/usr/bin/python3")) {
     const std::string plot = "/usr/bin/python3 " + std::string(VERIFYBENCH_SOURCE_DIR) +
@@ -438,16 +607,32 @@ TEST(LoopCli, BadInputIsRefusedWithExitCode2) {
   expect(out, "give one of --trajectory");
   expect("--trajectory " + (dir / "ok.txt").string() + " --sequence " + dir.string() + out,
          "give one of --trajectory");
-  expect("--trajectory " + (dir / "ok.txt").string() + " --pipeline fpfh" + out, "pipeline 'fpfh'");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --pipeline 4d" + out,
+         "--pipeline: '4d' is not 3d or 2d or fpfh");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --retrieval nope" + out,
+         "unknown retriever 'nope' (known: auto, hbst, kdtree, all)");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --max-hamming 5000" + out,
+         "--max-hamming: '5000' is outside [0, 4096]");
   expect("--trajectory " + (dir / "ok.txt").string() + " --solvers nope" + out, "unknown solver");
   expect("--trajectory " + (dir / "ok.txt").string() + " --first-frame 1 --last-frame 1" + out,
          "--last-frame 1 is not after --first-frame 1");
   expect("--trajectory " + (dir / "ok.txt").string() + " --odometry lidar" + out,
-         "--odometry: 'lidar' is not drift or gicp");
+         "--odometry: 'lidar' is not drift, gicp, poses or log");
   expect("--trajectory " + (dir / "ok.txt").string() + " --trajectory-frame camera" + out,
          "needs --calib");
   expect("--trajectory " + (dir / "ok.txt").string() + " --out " + (dir / "file").string(),
          "not a folder");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --odometry poses" + out,
+         "--odometry poses needs --odometry-file FILE");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --odometry log" + out,
+         "--odometry log needs a --sequence");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --reference x.tum" + out,
+         "go with --sequence");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --odometry poses --odometry-file " +
+             (dir / "p.txt").string() + out,
+         "p.txt:2: field 12 'x'");
+  expect("--sequence " + dir.string() + " --sequence-format nope" + out,
+         "unknown sequence format 'nope'");
 }
 
 // Real scans in the KITTI layout (velodyne/NNNNNN.bin, poses.txt in the camera frame, calib.txt):
@@ -489,6 +674,49 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
   EXPECT_EQ(j["trajectories"]["frames"].size(), path.size());
   EXPECT_GE(j["true_closures"].size(), 2u);
   EXPECT_GE(j["summary"][0]["tp"].get<int>(), 1) << j["summary"][0].dump();
+  // Odometry from a file (TUM, stamped by scan index as the folder has no times.txt): the true
+  // poses shifted 1 m a frame along y (a drift the test knows). The report's odometry is that
+  // file at the frames used, the reference the sequence's own poses.
+  {
+    std::vector<double> stamps;
+    std::vector<vb::Rigid<3>> drifted;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      stamps.push_back(static_cast<double>(i));
+      vb::Rigid<3> T = path[i];
+      T.translation().y() += 0.01 * static_cast<double>(i);
+      drifted.push_back(T);
+    }
+    vb::write_tum_poses((dir / "odo.tum").string(), stamps, drifted);
+    const auto o = run_cli("loop --sequence " + dir.string() + " --odometry poses --odometry-file " +
+                           (dir / "odo.tum").string() +
+                           " --pipeline 2d --solvers clique --accept count --scan-spacing 2.9 "
+                           "--quiet --out " + (dir / "out_odo").string());
+    ASSERT_EQ(o.code, 0) << o.output;
+    std::ifstream oin(dir / "out_odo" / "loop.json");
+    const auto oj = nlohmann::json::parse(oin);
+    EXPECT_EQ(oj["parameters"]["loop"]["odometry"], "poses");
+    EXPECT_EQ(oj["parameters"]["loop"]["sequence_format"], "kitti");
+    EXPECT_NE(oj["parameters"]["loop"]["reference"].get<std::string>().find("poses.txt"),
+              std::string::npos);
+    const auto odo = vb::read_tum_poses((dir / "out_odo" / "trajectories" / "odometry.tum").string());
+    ASSERT_EQ(odo.poses.size(), oj["trajectories"]["frames"].size());
+    for (std::size_t k = 0; k < odo.poses.size(); ++k) {
+      const int f = oj["trajectories"]["frames"][k].get<int>();
+      EXPECT_EQ(odo.stamps[k], f);
+      EXPECT_LT((odo.poses[k].translation() - drifted[f].translation()).norm(), 1e-6) << f;
+    }
+    // A file one pose short, with no stamps to match by (KITTI), is refused naming it.
+    std::vector<vb::Rigid<3>> short_poses(drifted.begin(), drifted.end() - 1);
+    vb::write_kitti_poses((dir / "short.txt").string(), short_poses);
+    const auto bad = run_cli("loop --sequence " + dir.string() + " --odometry poses --odometry-file " +
+                             (dir / "short.txt").string() + " --quiet --out " +
+                             (dir / "out_short").string());
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("short.txt: " + std::to_string(path.size() - 1) + " poses for " +
+                              std::to_string(path.size()) + " scans"),
+              std::string::npos)
+        << bad.output;
+  }
   // A missing scan is an input error naming the file.
   fs::remove(dir / "velodyne" / "000010.bin");
   const auto bad = run_cli("loop --sequence " + dir.string() + " --pipeline 2d --quiet --out " +
@@ -529,4 +757,93 @@ TEST(LoopCli, Kitti00ExcerptWithTwoRevisits) {
     if (c["solver"] == "clique" && c["accepted"].get<bool>() && c["correct"].get<bool>()) ++tp;
   }
   EXPECT_EQ(clique["tp"].get<int>(), tp);
+}
+
+// `loop` offers every front-end option of `extract`, with the same value ranges (one declaration:
+// frontend/params.cpp); the names are listed here as the oracle, so a dropped row fails.
+TEST(LoopCli, HelpListsEveryFrontEndOptionOfExtractWithItsRange) {
+  const auto extract = run_cli("extract --help");
+  const auto loop = run_cli("loop --help");
+  ASSERT_EQ(extract.code, 0) << extract.output;
+  ASSERT_EQ(loop.code, 0) << loop.output;
+  auto line_of = [](const std::string& help, const std::string& option) {
+    const std::string head = "  --" + option + " ";
+    const auto at = help.find(head);
+    if (at == std::string::npos) return std::string();
+    return help.substr(at, help.find('\n', at) - at);
+  };
+  auto range_of = [](const std::string& line) {
+    const auto at = line.find(", in [");
+    return at == std::string::npos ? std::string() : line.substr(at, line.find(']', at) - at + 1);
+  };
+  const std::vector<std::string> options = {
+      "pipeline", "voxel", "iss-salient-radius", "iss-non-max-radius", "iss-gamma",
+      "iss-min-neighbors", "normal-radius", "shot-radius", "cell", "min-occupancy", "range",
+      "orb-features", "fpfh-normal-radius", "fpfh-radius", "matching", "max-hamming",
+      "max-feature-distance", "max-matches", "exact-matching", "hbst-leaf"};
+  for (const std::string& option : options) {
+    const std::string e = line_of(extract.output, option), l = line_of(loop.output, option);
+    ASSERT_FALSE(e.empty()) << "extract --help lacks --" << option;
+    ASSERT_FALSE(l.empty()) << "loop --help lacks --" << option;
+    EXPECT_EQ(range_of(e), range_of(l)) << option;
+    if (option != "pipeline" && option != "matching" && option != "exact-matching") {
+      EXPECT_FALSE(range_of(e).empty()) << e;
+    }
+  }
+  EXPECT_NE(line_of(loop.output, "max-hamming").find(", in [0, 4096]"), std::string::npos);
+  EXPECT_NE(line_of(loop.output, "pipeline").find("3d|2d|fpfh"), std::string::npos);
+}
+
+// The dense check against a transform the test draws: a structured map seen from two frames; ICP
+// from a motion 0.3 m / 2 deg off comes back to the drawn one and the maps overlap fully, while a
+// motion 8 m off leaves them apart.
+TEST(DenseCheck, IcpReturnsToTheDrawnMotionAndAnAliasOverlapsLittle) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  vb::LocalMap match, query;
+  // Ground, two walls and a few boxes, 0.2 m apart, in the match map's frame.
+  std::vector<Eigen::Vector3f> world;
+  for (float x = -15; x <= 15; x += 0.2f) {
+    for (float y = -15; y <= 15; y += 0.2f) world.emplace_back(x, y, 0.0f);
+  }
+  for (float s = -15; s <= 15; s += 0.2f) {
+    for (float z = 0; z <= 4; z += 0.2f) {
+      world.emplace_back(s, 15.0f, z);
+      world.emplace_back(-15.0f, s, z);
+    }
+  }
+  for (int b = 0; b < 12; ++b) {
+    const float cx = -12 + 24 * u(rng), cy = -12 + 24 * u(rng), h = 1 + 2 * u(rng);
+    for (float dx = 0; dx <= 1.2f; dx += 0.2f) {
+      for (float z = 0; z <= h; z += 0.2f) {
+        world.emplace_back(cx + dx, cy, z);
+        world.emplace_back(cx, cy + dx, z);
+      }
+    }
+  }
+  match.points = world;
+  vb::Rigid<3> T_match_query = vb::Rigid<3>::Identity();
+  T_match_query.linear() = Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_match_query.translation() = Eigen::Vector3d(3.0, -2.0, 0.1);
+  for (const auto& p : world) {
+    query.points.push_back((T_match_query.inverse() * p.cast<double>()).cast<float>());
+  }
+  vb::DenseCheckParams params;
+  params.min_overlap = 0.4;
+  vb::Rigid<3> near = T_match_query;
+  near.linear() = near.linear() * Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ())
+                                      .toRotationMatrix();
+  near.translation() += Eigen::Vector3d(0.3, 0.2, 0.0);
+  const vb::DenseCheck good = vb::dense_check(query, match, near, params);
+  ASSERT_TRUE(good.icp.converged);
+  EXPECT_LT((good.icp.T_target_source.translation() - T_match_query.translation()).norm(), 0.1);
+  EXPECT_LT(vb::rotation_error_deg<3>(good.icp.T_target_source, T_match_query), 0.5);
+  EXPECT_GT(good.overlap, 0.9);
+  vb::Rigid<3> alias = T_match_query;
+  alias.translation() += Eigen::Vector3d(8.0, 0.0, 0.0);
+  const vb::DenseCheck bad = vb::dense_check(query, match, alias, params);
+  EXPECT_LT(bad.overlap, 0.8);
+  EXPECT_LT(bad.overlap, good.overlap - 0.15);
+  params.min_overlap = 1.0;
+  EXPECT_THROW(params.validate(), std::invalid_argument);
 }

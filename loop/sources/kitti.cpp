@@ -7,6 +7,7 @@
 //                            (dataset/sequences/NN, dataset/poses/NN.txt); none for 11-21
 // The poses are the left camera's (z forward); Tr^-1 * P * Tr makes them Velodyne poses in the
 // first Velodyne frame (z up).
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -57,6 +58,16 @@ std::unique_ptr<SequenceSource> open(const std::string& dir, const SourceOptions
   require_dir(velodyne, "KITTI scans: DIR/velodyne/NNNNNN.bin");
   auto files = list_scans(velodyne, {".bin"});
   if (files.empty()) input_error(velodyne, 0, "no .bin scan");
+  // Scans are numbered from 000000 without a gap: a missing one would shift every later pose.
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (stem_integer(files[i]) != i) {
+      char name[32];
+      std::snprintf(name, sizeof name, "%06zu.bin", i);
+      input_error((root / "velodyne" / name).string(), 0,
+                  "no such scan (KITTI numbers its scans from 000000 without gaps; the next is " +
+                      fs::path(files[i]).filename().string() + ")");
+    }
+  }
 
   SequenceInfo info;
   info.format = "kitti";

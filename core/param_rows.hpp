@@ -1,0 +1,98 @@
+#pragma once
+// One parameter, one place: a setting a user can change is one row, declared beside the struct
+// that owns it (its CLI option, report key, range and help); the command line, the validation and
+// the report's `parameters` block are made from the rows (apps/param_options.hpp). The rows of a
+// struct P read and write a P; the defaults are those of the P a command starts from, so two
+// commands that share rows share names and ranges even where their defaults differ.
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace verifybench {
+
+template <class P>
+struct ParamRow {
+  enum class Kind { real, integer, flag, text };
+  std::string option;      ///< CLI option without the dashes: "iss-salient-radius"
+  std::string key;         ///< report key: "iss_salient_radius_m"
+  std::string value_name;  ///< shown in --help ("M"); empty for a flag
+  std::string help;
+  Kind kind = Kind::real;
+  double min = 0.0, max = 0.0;  ///< inclusive range of a real or integer
+  bool infinite_ok = false;     ///< real: "inf" stands for no limit
+  /// real, integer, flag (0 / 1): the value in P, and its setter.
+  std::function<double(const P&)> get;
+  std::function<void(P&, double)> set;
+  /// text: the value in P, and a setter that throws std::invalid_argument for a bad text.
+  std::function<std::string(const P&)> get_text;
+  std::function<void(P&, const std::string&)> set_text;
+
+  /// The value of `p` as text ("0.5", "1000", "inf", "nearest"; "" for an unset flag); a real row
+  /// whose one option sets two fields may show both through get_text ("0.5; fpfh 0.3").
+  std::string text(const P& p) const {
+    if (get_text) return get_text(p);
+    const double v = get(p);
+    if (kind == Kind::flag) return v != 0.0 ? "on" : "";
+    if (std::isinf(v)) return "inf";
+    std::ostringstream out;
+    if (kind == Kind::integer) {
+      out << static_cast<long long>(v);
+    } else {
+      out << v;
+    }
+    return out.str();
+  }
+  /// The range in words, for messages and the README: "[0.000001, 1000000]".
+  std::string range() const {
+    if (kind == Kind::flag || kind == Kind::text) return "";
+    std::ostringstream out;
+    if (kind == Kind::integer) {
+      out << "[" << static_cast<long long>(min) << ", " << static_cast<long long>(max) << "]";
+    } else {
+      out << "[" << min << ", " << max << "]";
+    }
+    if (infinite_ok) out << " or inf";
+    return out.str();
+  }
+  /// Throws std::invalid_argument naming the key and the value when p's value is out of range.
+  void check(const P& p) const {
+    if (kind == Kind::text || kind == Kind::flag) return;
+    const double v = get(p);
+    const bool ok = (infinite_ok && v == std::numeric_limits<double>::infinity()) ||
+                    (std::isfinite(v) && v >= min && v <= max &&
+                     (kind != Kind::integer || v == std::floor(v)));
+    if (!ok) {
+      std::ostringstream msg;
+      msg << key << " = " << v << " is outside " << range();
+      throw std::invalid_argument(msg.str());
+    }
+  }
+};
+
+/// A real or integer row bound to `p.*member`.
+template <class P, class T>
+ParamRow<P> param_row(T P::*member, ParamRow<P> row) {
+  row.get = [=](const P& p) { return static_cast<double>(p.*member); };
+  row.set = [=](P& p, double v) { p.*member = static_cast<T>(v); };
+  return row;
+}
+
+/// A row bound to `p.*outer.*member` (a field of a nested struct).
+template <class P, class S, class T>
+ParamRow<P> param_row(S P::*outer, T S::*member, ParamRow<P> row) {
+  row.get = [=](const P& p) { return static_cast<double>(p.*outer.*member); };
+  row.set = [=](P& p, double v) { p.*outer.*member = static_cast<T>(v); };
+  return row;
+}
+
+/// Every row's check on `p`.
+template <class P>
+void check_rows(const std::vector<ParamRow<P>>& rows, const P& p) {
+  for (const auto& r : rows) r.check(p);
+}
+
+}  // namespace verifybench
