@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/errors.hpp"
@@ -22,6 +23,11 @@ std::string MatchingPolicy::name() const {
       return "knn:" + std::to_string(k);
     case Kind::radius:
       return "radius";
+    case Kind::ratio: {
+      std::ostringstream out;
+      out << "ratio:" << ratio;
+      return out.str();
+    }
   }
   return "nearest";
 }
@@ -45,8 +51,17 @@ MatchingPolicy parse_matching(const std::string& text) {
       return p;
     }
   }
+  if (text.rfind("ratio:", 0) == 0) {
+    const ParsedReal r = parse_real_token(text.substr(6));
+    if (r.error == NumberError::none && r.value > 0.0 && r.value <= 1.0) {
+      p.kind = MatchingPolicy::Kind::ratio;
+      p.ratio = r.value;
+      return p;
+    }
+  }
   throw std::invalid_argument("matching policy '" + text +
-                              "' is not nearest, mutual, knn:K (1 <= K <= 1000) or radius");
+                              "' is not nearest, mutual, knn:K (1 <= K <= 1000), radius or "
+                              "ratio:R (0 < R <= 1)");
 }
 
 namespace {
@@ -80,6 +95,11 @@ std::vector<FeatureMatch> select(std::vector<std::vector<FeatureMatch>> candidat
         break;
       case MatchingPolicy::Kind::radius:
         out.insert(out.end(), list.begin(), list.end());
+        break;
+      case MatchingPolicy::Kind::ratio:
+        if (list.size() < 2 || list[0].distance < policy.ratio * list[1].distance) {
+          out.push_back(list.front());
+        }
         break;
     }
   }
@@ -141,7 +161,9 @@ std::vector<FeatureMatch> match_real(const RealDescriptors& source, const RealDe
     if (policy.kind == MatchingPolicy::Kind::radius) {
       targets.radiusSearch((*src)[i], max_distance, idx, d2);
     } else {
-      const int k = policy.kind == MatchingPolicy::Kind::knn ? policy.k : 1;
+      const int k = policy.kind == MatchingPolicy::Kind::knn     ? policy.k
+                    : policy.kind == MatchingPolicy::Kind::ratio ? 2
+                                                                 : 1;
       targets.nearestKSearch((*src)[i], std::min<int>(k, static_cast<int>(dst->size())), idx, d2);
     }
     for (std::size_t m = 0; m < idx.size(); ++m) {

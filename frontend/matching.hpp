@@ -11,10 +11,11 @@
 namespace verifybench {
 
 struct MatchingPolicy {
-  enum class Kind { nearest, mutual, knn, radius };
+  enum class Kind { nearest, mutual, knn, radius, ratio };
   Kind kind = Kind::nearest;
   int k = 1;  ///< knn: neighbours per source descriptor
-  /// "nearest", "mutual", "knn:K", "radius"
+  double ratio = 0.9;  ///< ratio: keep the nearest when d1 < ratio * d2
+  /// "nearest", "mutual", "knn:K", "radius", "ratio:R"
   std::string name() const;
 };
 
@@ -31,6 +32,9 @@ struct FeatureMatch {
 ///   mutual   a nearest match whose target's nearest source descriptor is that source
 ///   knn:K    the K nearest target descriptors of each source one
 ///   radius   every target descriptor within max_distance
+///   ratio:R  the nearest, when closer than R times the second nearest within max_distance
+///            (Lowe's ratio test, IJCV 2004: a descriptor that many others resemble, as flat
+///            ground's FPFH or a corridor's, matches nowhere in particular)
 /// Sorted by source, then distance, then target. Exhaustive (the reference for HBST).
 std::vector<FeatureMatch> match_binary(const BinaryDescriptors& source,
                                        const BinaryDescriptors& target,

@@ -120,7 +120,9 @@ std::vector<Row> make_rows() {
   matching.option = "matching";
   matching.key = "matching";
   matching.value_name = "POLICY";
-  matching.help = "nearest | mutual | knn:K | radius (every match within the distance limit)";
+  matching.help =
+      "nearest | mutual | knn:K | radius (every match within the distance limit) | ratio:R (the "
+      "nearest when closer than R x the second: Lowe's test)";
   matching.kind = Kind::text;
   matching.get_text = [](const ExtractParams& p) { return p.matching.name(); };
   matching.set_text = [](ExtractParams& p, const std::string& v) { p.matching = parse_matching(v); };

@@ -252,6 +252,11 @@ std::vector<FeatureMatch> by_definition(int ns, int nt, Distance dist, const Mat
     const int keep = p.kind == MatchingPolicy::Kind::knn      ? p.k
                      : p.kind == MatchingPolicy::Kind::radius ? nt
                                                               : 1;
+    // Lowe's test: the nearest only when the second nearest within max_d is farther than d1 / R.
+    if (p.kind == MatchingPolicy::Kind::ratio && nt >= 2 && row[1].distance <= max_d &&
+        !(row[0].distance < p.ratio * row[1].distance)) {
+      continue;
+    }
     for (int r = 0; r < std::min(keep, nt); ++r) {
       const FeatureMatch& m = row[static_cast<std::size_t>(r)];
       if (m.distance > max_d) break;
@@ -297,7 +302,7 @@ TEST(Matching, EveryPolicyMatchesItsDefinitionForBinaryAndFpfh) {
   // Hamming ties are common: the definition's stable sort keeps the lower target first, as the
   // matcher must; ties of the nearest source go to the lower source.
   auto ham = [&](int i, int j) { return double(hamming(bs.row(i), bt.row(j), bs.words())); };
-  for (const char* text : {"nearest", "mutual", "knn:3", "radius"}) {
+  for (const char* text : {"nearest", "mutual", "knn:3", "radius", "ratio:0.9", "ratio:0.97"}) {
     const MatchingPolicy p = parse_matching(text);
     EXPECT_EQ(p.name(), text);
     const double radius = 20.0;
@@ -307,6 +312,8 @@ TEST(Matching, EveryPolicyMatchesItsDefinitionForBinaryAndFpfh) {
                 std::string("binary ") + text);
   }
   EXPECT_THROW(parse_matching("knn:0"), std::invalid_argument);
+  EXPECT_THROW(parse_matching("ratio:0"), std::invalid_argument);
+  EXPECT_THROW(parse_matching("ratio:1.5"), std::invalid_argument);
   EXPECT_THROW(parse_matching("closest"), std::invalid_argument);
 }
 
