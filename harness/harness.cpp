@@ -2,8 +2,7 @@
 
 #include <cstring>
 
-#include "acceptance/calibration.hpp"
-#include "acceptance/prior_gate.hpp"
+#include "acceptance/verify.hpp"
 #include "core/metrics.hpp"
 #include "core/random.hpp"
 #include "core/timer.hpp"
@@ -13,34 +12,25 @@
 namespace verifybench {
 
 template <int Dim>
-TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
-                     const LabeledSet<Dim>& set, const SolverParams& params,
-                     const SuccessCriteria& criteria) {
-  StopWatch clock;
-  Result<Dim> result = solver.solve(set.corr, params);
+TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_name,
+                         const LabeledSet<Dim>& set, const SolverParams& params,
+                         const SuccessCriteria& criteria) {
+  const Result<Dim>& result = v.result;
   TrialRecord r;
-  r.time_ms = clock.ms();
+  r.time_ms = v.solve_ms;
   r.accept_rule = to_string(params.accept.rule);
   r.expected_positive = set.truth.positive;
-  if (params.accept.rule == AcceptParams::Rule::pvalue && result.status != Status::error) {
-    try {
-      const Calibration c =
-          calibrate(solver, set.corr, params, static_cast<int>(result.inliers.size()));
-      decide_calibrated(result, set.corr, c, params);
-      r.p_value = c.p_value;
-      r.p_value_low = c.p_value_low;
-      r.p_value_high = c.p_value_high;
-      r.null_threshold = c.threshold;
-      r.null_mean = c.null.mean;
-      r.null_sd = c.null.sd;
-      r.null_draws = c.null.draws;
-      r.null_limited_draws = c.limited_draws;
-      r.null_screened = c.screened;
-      r.calibration_ms = c.ms;
-    } catch (const std::exception& e) {
-      result.status = Status::error;
-      result.message = e.what();
-    }
+  if (const auto& c = v.calibration) {
+    r.p_value = c->p_value;
+    r.p_value_low = c->p_value_low;
+    r.p_value_high = c->p_value_high;
+    r.null_threshold = c->threshold;
+    r.null_mean = c->null.mean;
+    r.null_sd = c->null.sd;
+    r.null_draws = c->null.draws;
+    r.null_limited_draws = c->limited_draws;
+    r.null_screened = c->screened;
+    r.calibration_ms = c->ms;
   }
   r.solver = solver_name;
   r.dim = Dim;
@@ -66,7 +56,7 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
   const SelectionGeometry geometry = selection_geometry(set.corr, result.inliers);
   r.distinct_inliers = geometry.distinct;
   r.lever_arm = geometry.lever_arm;
-  if (const auto d2 = prior_distance2(set.corr, result.T_target_source)) r.prior_d2 = *d2;
+  if (v.prior_d2) r.prior_d2 = *v.prior_d2;
 
   if (!set.truth.labels.empty()) {
     const InlierScores s = inlier_scores(result.inliers, set.truth.labels);
@@ -84,6 +74,13 @@ TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
                 r.translation_error < criteria.max_translation_error;
   }
   return r;
+}
+
+template <int Dim>
+TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
+                     const LabeledSet<Dim>& set, const SolverParams& params,
+                     const SuccessCriteria& criteria) {
+  return trial_record(verify(solver, set.corr, params), solver_name, set, params, criteria);
 }
 
 namespace {
@@ -223,6 +220,12 @@ std::vector<CliqueRecord> run_clique_algorithms(const BitGraph& g, const std::st
   return rows;
 }
 
+template TrialRecord trial_record<2>(const Verification<2>&, const std::string&,
+                                     const LabeledSet<2>&, const SolverParams&,
+                                     const SuccessCriteria&);
+template TrialRecord trial_record<3>(const Verification<3>&, const std::string&,
+                                     const LabeledSet<3>&, const SolverParams&,
+                                     const SuccessCriteria&);
 template TrialRecord evaluate<2>(const Solver&, const std::string&, const LabeledSet<2>&,
                                  const SolverParams&, const SuccessCriteria&);
 template TrialRecord evaluate<3>(const Solver&, const std::string&, const LabeledSet<3>&,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "acceptance/verify.hpp"
 #include "cliques/max_clique.hpp"
 #include "core/correspondences.hpp"
 #include "generators/synthetic.hpp"
@@ -15,7 +16,14 @@
 
 namespace verifybench {
 
-/// Times solver.solve() and scores the result against `set.truth` (which the solver never sees).
+/// The report row of one verification (acceptance/verify.hpp), scored against `set.truth` (which
+/// the solver never saw).
+template <int Dim>
+TrialRecord trial_record(const Verification<Dim>& verification, const std::string& solver_name,
+                         const LabeledSet<Dim>& set, const SolverParams& params,
+                         const SuccessCriteria& criteria);
+
+/// verify() then trial_record(): the row of one solver on one set.
 template <int Dim>
 TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
                      const LabeledSet<Dim>& set, const SolverParams& params,

@@ -301,21 +301,12 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
               row.record.message = "no correspondence";
               return;
             }
-            row.record = evaluate<Dim>(*solvers[s], config.solvers[s], set, sp, SuccessCriteria{});
-            Eigen::Matrix<double, Dim + 1, Dim + 1> M;
-            for (int i = 0; i <= Dim; ++i) {
-              for (int j = 0; j <= Dim; ++j) {
-                M(i, j) = row.record.T_target_source.empty()
-                              ? (i == j ? 1.0 : 0.0)
-                              : row.record.T_target_source[i * (Dim + 1) + j];
-              }
-            }
-            Rigid<Dim> T;
-            T.matrix() = M;
+            const Verification<Dim> v = verify(*solvers[s], set.corr, sp);
+            row.record = trial_record(v, config.solvers[s], set, sp, SuccessCriteria{});
             if constexpr (Dim == 2) {
-              row.T_estimate = lift_planar(T);
+              row.T_estimate = lift_planar(v.result.T_target_source);
             } else {
-              row.T_estimate = T;
+              row.T_estimate = v.result.T_target_source;
             }
           },
           dump.set);

@@ -677,3 +677,48 @@ TEST(Calibration, SyntheticNegativesAndManifestsSayWhatToExpect) {
 
 }  // namespace
 }  // namespace verifybench
+
+namespace verifybench {
+namespace {
+
+// verify(), the one path every caller takes, against the rules' definitions: under the count rule
+// the decision is the inlier count's and no null is fitted; under the calibrated rule it is p <
+// alpha, on a drawn positive and its negative twin; a prior 90 deg off is gated out with d^2 above
+// the chi-square quantile, and the count rule ignores it.
+TEST(Verify, EachRuleDecidesByItsDefinition) {
+  register_builtin_solvers();
+  const auto solver = SolverRegistry::create("clique");
+  for (bool negative : {false, true}) {
+    const LabeledSet<3> set = draw<3>(300, 0.8, 7, negative);
+    SolverParams p;
+    p.accept.rule = AcceptParams::Rule::count;
+    const Verification<3> count = verify(*solver, set.corr, p);
+    EXPECT_FALSE(count.calibration.has_value());
+    EXPECT_EQ(count.result.accepted,
+              static_cast<int>(count.result.inliers.size()) >= p.accept_threshold(3));
+    p.accept.rule = AcceptParams::Rule::pvalue;
+    const Verification<3> calibrated = verify(*solver, set.corr, p);
+    ASSERT_TRUE(calibrated.calibration.has_value());
+    EXPECT_EQ(calibrated.result.accepted, calibrated.calibration->p_value < p.accept.alpha);
+    EXPECT_EQ(calibrated.result.accepted, !negative);
+    EXPECT_FALSE(calibrated.prior_d2.has_value());
+  }
+  LabeledSet<3> set = draw<3>(300, 0.5, 9);
+  PosePrior<3> prior;
+  prior.T_target_source = *set.truth.T_target_source;
+  prior.T_target_source.linear() =
+      prior.T_target_source.linear() *
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  prior.covariance = Eigen::Matrix<double, 6, 6>::Identity() * 0.01;
+  set.corr.prior = prior;
+  SolverParams p;
+  const Verification<3> gated = verify(*solver, set.corr, p);
+  ASSERT_TRUE(gated.prior_d2.has_value());
+  EXPECT_GT(*gated.prior_d2, chi2_quantile(p.accept.prior_gate, 6));
+  EXPECT_FALSE(gated.result.accepted);
+  p.accept.rule = AcceptParams::Rule::count;
+  EXPECT_TRUE(verify(*solver, set.corr, p).result.accepted);
+}
+
+}  // namespace
+}  // namespace verifybench

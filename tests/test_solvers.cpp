@@ -77,20 +77,53 @@ void expect_recovery(const std::string& name) {
   }
 }
 
+// The peers' "-default" entries run the libraries' own defaults (Open3D's 100,000 iterations with no
+// checker, PCL's prerejective similarity 0.6), kept to show what a user gets out of the box; they
+// need not recover here, but must answer without an error.
+template <int Dim>
+void expect_an_answer(const std::string& name) {
+  SyntheticParams p;
+  p.n = 200;
+  p.outlier_ratio = 0.5;
+  const auto set = make_synthetic<Dim>(p);
+  const Result<Dim> r = SolverRegistry::create(name)->solve(set.corr, SolverParams{});
+  EXPECT_NE(r.status, Status::error) << r.message;
+}
+
 TEST_P(Recovers, DrawnMotionAtHalfOutliers) {
   const auto& [name, dim] = GetParam();
+  if (name.size() > 8 && name.compare(name.size() - 8, 8, "-default") == 0) {
+    if (dim == 2) {
+      expect_an_answer<2>(name);
+    } else {
+      expect_an_answer<3>(name);
+    }
+    return;
+  }
   if (dim == 2)
     expect_recovery<2>(name);
   else
     expect_recovery<3>(name);
 }
 
+// Every registered solver, the peers included: a new solver is in this suite from the day it is
+// registered.
+std::vector<std::string> registered_names() {
+  register_builtin_solvers();
+  std::vector<std::string> names;
+  for (const auto& info : SolverRegistry::list()) names.push_back(info.name);
+  return names;
+}
+
 INSTANTIATE_TEST_SUITE_P(AllSolvers, Recovers,
-                         ::testing::Combine(::testing::Values("clique", "ransac", "mac"),
+                         ::testing::Combine(::testing::ValuesIn(registered_names()),
                                             ::testing::Values(2, 3)),
                          [](const auto& info) {
-                           return std::get<0>(info.param) + "_" +
-                                  std::to_string(std::get<1>(info.param)) + "D";
+                           std::string name = std::get<0>(info.param);
+                           for (char& c : name) {
+                             if (c == '-') c = '_';
+                           }
+                           return name + "_" + std::to_string(std::get<1>(info.param)) + "D";
                          });
 
 TEST_F(Registered, RansacIsReproducibleForASeed) {

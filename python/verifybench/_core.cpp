@@ -15,6 +15,7 @@
 
 #include "acceptance/calibration.hpp"
 #include "acceptance/prior_gate.hpp"
+#include "acceptance/verify.hpp"
 #include "core/transform.hpp"
 #include "core/errors.hpp"
 #include "datasets/dump_format.hpp"
@@ -132,19 +133,14 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   }
   vb::validate(corr);
   const auto solver = vb::SolverRegistry::create(name);
-  vb::Result<Dim> result;
-  std::optional<vb::Calibration> calibration;
-  double ms = 0.0;
+  vb::Verification<Dim> v;
   {
     py::gil_scoped_release unlocked;  // other Python threads run while the C++ search does
-    const auto start = std::chrono::steady_clock::now();
-    result = solver->solve(corr, params);
-    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    if (params.accept.rule == vb::AcceptParams::Rule::pvalue && result.status != vb::Status::error) {
-      calibration = vb::calibrate(*solver, corr, params, static_cast<int>(result.inliers.size()));
-      vb::decide_calibrated(result, corr, *calibration, params);
-    }
+    v = vb::verify(*solver, corr, params);
   }
+  const vb::Result<Dim>& result = v.result;
+  const std::optional<vb::Calibration>& calibration = v.calibration;
+  const double ms = v.solve_ms;
   if (result.status == vb::Status::error) throw std::invalid_argument(name + ": " + result.message);
   py::dict out;
   out["solver"] = name;
@@ -172,8 +168,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["null_threshold"] =
       calibration ? py::object(py::int_(calibration->threshold)) : py::object(py::none());
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;
-  const auto d2 = vb::prior_distance2(corr, result.T_target_source);
-  out["prior_d2"] = d2 ? py::object(py::float_(*d2)) : py::object(py::none());
+  out["prior_d2"] = v.prior_d2 ? py::object(py::float_(*v.prior_d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
   return out;
 }

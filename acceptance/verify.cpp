@@ -1,0 +1,36 @@
+#include "acceptance/verify.hpp"
+
+#include <exception>
+
+#include "acceptance/prior_gate.hpp"
+#include "core/timer.hpp"
+
+namespace verifybench {
+
+template <int Dim>
+Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
+                         const SolverParams& params) {
+  Verification<Dim> v;
+  StopWatch clock;
+  v.result = solver.solve(corr, params);
+  v.solve_ms = clock.ms();
+  if (params.accept.rule == AcceptParams::Rule::pvalue && v.result.status != Status::error) {
+    try {
+      v.calibration = calibrate(solver, corr, params, static_cast<int>(v.result.inliers.size()));
+      decide_calibrated(v.result, corr, *v.calibration, params);
+    } catch (const std::exception& e) {
+      v.calibration.reset();
+      v.result.status = Status::error;
+      v.result.message = e.what();
+    }
+  }
+  if (v.result.status != Status::error) {
+    v.prior_d2 = prior_distance2(corr, v.result.T_target_source);
+  }
+  return v;
+}
+
+template Verification<2> verify<2>(const Solver&, const Correspondences<2>&, const SolverParams&);
+template Verification<3> verify<3>(const Solver&, const Correspondences<3>&, const SolverParams&);
+
+}  // namespace verifybench

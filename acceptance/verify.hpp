@@ -1,0 +1,29 @@
+#pragma once
+// One verification of one pair, the same wherever it is asked for (the harness's rows, the Python
+// binding, the loop's candidates): the solver's search and fit, then the accept rule: the count
+// rule is the solver's own decision (decide() in solvers/solver.hpp); the calibrated rule fits the
+// pair's permutation null and decides on p (calibration.hpp), with the pose prior's gate where the
+// set carries a prior (prior_gate.hpp). The result is typed: the solver's Result, the calibration
+// when there was one, the prior's d^2.
+#include <optional>
+
+#include "acceptance/calibration.hpp"
+#include "solvers/solver.hpp"
+
+namespace verifybench {
+
+template <int Dim>
+struct Verification {
+  Result<Dim> result;                      ///< decision applied: accepted, status
+  std::optional<Calibration> calibration;  ///< pvalue rule, when the solve did not fail
+  std::optional<double> prior_d2;          ///< d^2 of the motion against the set's prior
+  double solve_ms = 0.0;                   ///< the solver's own call, wall time
+};
+
+/// Never throws for a solver's or a calibration's failure: they come back as Status::error with
+/// the message.
+template <int Dim>
+Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
+                         const SolverParams& params);
+
+}  // namespace verifybench
