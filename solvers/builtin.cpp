@@ -8,6 +8,9 @@ void register_clique_solvers();
 void register_ransac_solver();
 void register_mac_solver();
 void register_jcbb_solver();
+void register_gnc_tls_solver();
+void register_teaser_solver();
+void register_sc2pcr_solver();
 
 void register_solvers() {
   static std::once_flag once;
@@ -16,6 +19,9 @@ void register_solvers() {
     register_ransac_solver();
     register_mac_solver();
     register_jcbb_solver();
+    register_gnc_tls_solver();
+    register_teaser_solver();
+    register_sc2pcr_solver();
   });
 }
 

@@ -9,10 +9,14 @@ namespace verifybench {
 const ParamFamily& ransac_param_family();  // ransac_solver.cpp
 const ParamFamily& mac_param_family();     // mac_solver.cpp
 const ParamFamily& jcbb_param_family();    // jcbb_solver.cpp
+const ParamFamily& gnc_param_family();     // gnc_tls_solver.cpp
+const ParamFamily& teaser_param_family();  // teaser_solver.cpp
+const ParamFamily& sc2_param_family();     // sc2pcr_solver.cpp
 
 const std::vector<ParamFamily>& param_families() {
   static const std::vector<ParamFamily> families = {ransac_param_family(), mac_param_family(),
-                                                    jcbb_param_family()};
+                                                    jcbb_param_family(),   gnc_param_family(),
+                                                    teaser_param_family(), sc2_param_family()};
   return families;
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Solver parameters: the options every solver shares, plus one plain struct per solver family.
 // A family's fields are declared once, as ParamField rows in the family's own solver file
-// (ransac_solver.cpp, mac_solver.cpp, jcbb_solver.cpp); the CLI options with their defaults and
-// ranges, the validation and the report's JSON are all made from those rows.
+// (ransac_solver.cpp, mac_solver.cpp, jcbb_solver.cpp, ...); the CLI options with their defaults
+// and ranges, the validation and the report's JSON are all made from those rows.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -24,6 +24,32 @@ struct MacParams {
 struct JcbbParams {
   double sigma = 0.0;        ///< per-axis point noise sigma [m]; 0 = inlier_threshold / 3
   double confidence = 0.95;  ///< level of the chi-square gates, in (0, 1)
+};
+
+/// Graduated non-convexity with the truncated least squares cost (Yang et al., RA-L 2020): the
+/// `gnc-tls` solver, and the rotation stage of `teaser` (TEASER++'s rotation_gnc_* settings).
+struct GncParams {
+  int max_iterations = 100;      ///< GNC iterations (weight updates) at most
+  double mu_factor = 1.4;        ///< mu <- mu_factor * mu after each update, > 1
+  double cost_threshold = 1e-6;  ///< stop when the weighted cost changes by less [m^2]
+};
+
+/// `teaser` (Yang, Shi, Carlone, T-RO 2020): how the inliers of the pairwise graph are selected.
+struct TeaserParams {
+  static constexpr int kExact = 0, kHeuristic = 1, kKcore = 2;
+  int inlier_selection = kExact;    ///< 0 = max clique, 1 = greedy clique, 2 = max k-core
+  double kcore_threshold = 0.5;     ///< kcore: max k-core only when its core > this * n
+  bool complete_tim_graph = false;  ///< rotation on all pairs of the selection, not a chain
+};
+
+/// `sc2-pcr` (Chen et al., CVPR 2022), defaults from the authors' 3DMatch and KITTI configs.
+struct Sc2Params {
+  double seed_ratio = 0.2;     ///< at most this fraction of the correspondences become seeds
+  double nms_radius = 0.1;     ///< seed non-maximum suppression radius in the source [m]
+  int k1 = 30;                 ///< first-stage consensus set: the seed's k1 best by SC2
+  int k2 = 20;                 ///< second-stage set: the k2 best by SC2 within the first
+  int power_iterations = 10;   ///< power iterations of the spectral scores
+  int refine_iterations = 20;  ///< reweighted refits of the final motion at most
 };
 
 /// How a pair is accepted as a loop closure (issue #13). `count` is the paper's rule (|inliers| >=
@@ -56,6 +82,9 @@ struct SolverParams {
   RansacParams ransac;
   MacParams mac;
   JcbbParams jcbb;
+  GncParams gnc;
+  TeaserParams teaser;
+  Sc2Params sc2;
   AcceptParams accept;
 
   /// Throws std::invalid_argument naming the field and the bad value.
@@ -98,7 +127,7 @@ ParamField bind(Family SolverParams::*family, T Family::*member, ParamField f) {
   return f;
 }
 
-/// Every family, in --help order (ransac, mac, jcbb).
+/// Every family, in --help order (ransac, mac, jcbb, gnc, teaser, sc2).
 const std::vector<ParamFamily>& param_families();
 
 /// The default of a field as --help shows it ("10000", "0.999"; "" for a flag).

@@ -26,8 +26,9 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     EXPECT_FALSE(info.description.empty());
   }
   // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
-  std::vector<std::string> expected{"clique", "jcbb",   "lo-ransac", "mac",
-                                    "msac",   "prosac", "ransac",    "ransac-adaptive"};
+  std::vector<std::string> expected{"clique", "gnc-tls", "jcbb",   "lo-ransac",       "mac",
+                                    "msac",   "prosac",  "ransac", "ransac-adaptive", "sc2-pcr",
+                                    "teaser"};
   if (VB_BUILT_OPEN3D) expected.insert(expected.end(), {"open3d-ransac", "open3d-ransac-default"});
   if (VB_BUILT_PCL) {
     expected.insert(expected.end(), {"pcl-prerejective", "pcl-prerejective-default", "pcl-ransac",
