@@ -36,10 +36,11 @@ def main(argv):
         return
     aggs = [a for _, doc in docs for a in doc["aggregates"]]
     if aggs and "solver" not in aggs[0]:  # a DIMACS report: one row per algorithm
-        print("| algorithm | graphs | proven | correct | total ms | median ms |")
-        print("|---|---|---|---|---|---|")
+        print("| algorithm | graphs | proven | correct (proved) | found, unproved | wrong | total ms | median ms |")
+        print("|---|---|---|---|---|---|---|---|")
         for a in aggs:
             print(f"| {a.get('algorithm')} | {a.get('graphs')} | {a.get('proven')} | {a.get('correct')} "
+                  f"| {a.get('found_unproved', '-')} | {a.get('wrong', '-')} "
                   f"| {fmt(a.get('total_time_ms'), '.2f')} | {fmt(a.get('median_time_ms'), '.2f')} |")
         return
     print("| dataset | dim | n | outliers | solver | expected | trials | success | accepted | median ms "

@@ -205,6 +205,29 @@ TEST(Cli, DimacsModeReportsOmegaAndRejectsBadInput) {
     EXPECT_EQ(r["correct"], true);
     EXPECT_EQ(r["clique"], (std::vector<int>{1, 2, 3, 4}));
   }
+  for (const auto& a : doc["aggregates"]) {
+    EXPECT_EQ(a["proven"], 1);
+    EXPECT_EQ(a["correct"], 1);
+    EXPECT_EQ(a["found_unproved"], 0);
+  }
+  // On a 5-cycle (omega 2, every core number 2: bound 3) a heuristic finds a maximum clique but
+  // proves nothing: not "correct", counted as found.
+  std::ofstream(dir / "c5.clq") << "p edge 5 5\ne 1 2\ne 2 3\ne 3 4\ne 4 5\ne 5 1\n";
+  std::ofstream(dir / "MANIFEST.tsv", std::ios::app) << "c5\t5\t5\t2\n";
+  const CliRun greedy = run("dimacs " + (dir / "c5.clq").string() +
+                            " --algorithms greedy --quiet --out " + (dir / "g.json").string());
+  ASSERT_EQ(greedy.code, 0) << greedy.output;
+  std::ifstream gin(dir / "g.json");
+  const auto gdoc = nlohmann::json::parse(gin);
+  ASSERT_EQ(gdoc["results"].size(), 1u);
+  EXPECT_EQ(gdoc["results"][0]["omega"], 2);
+  EXPECT_EQ(gdoc["results"][0]["known_omega"], 2);
+  EXPECT_NE(gdoc["results"][0]["status"], "ok");
+  EXPECT_TRUE(gdoc["results"][0]["correct"].is_null()) << gdoc["results"][0].dump();
+  EXPECT_EQ(gdoc["aggregates"][0]["proven"], 0);
+  EXPECT_EQ(gdoc["aggregates"][0]["correct"], 0);
+  EXPECT_EQ(gdoc["aggregates"][0]["found_unproved"], 1);
+  EXPECT_EQ(gdoc["aggregates"][0]["wrong"], 0);
   expect_usage_error("dimacs " + (dir / "bad.clq").string() + " " + kOut, "bad.clq:2: vertex '9'");
   expect_usage_error("dimacs " + (dir / "k4.clq").string() + " --algorithms nope " + kOut,
                      "unknown clique algorithm 'nope'");
