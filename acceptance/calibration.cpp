@@ -94,7 +94,7 @@ void fit_and_score(Calibration& c, const std::vector<int>& scores, int observed,
 
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
-                      const SolverParams& params, int observed) {
+                      const SolverParams& params, int observed, const Deadline& budget) {
   StopWatch clock;
   const int draws = params.accept.null_draws;
   const double alpha = params.accept.alpha;
@@ -155,6 +155,7 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                           : 1;
   auto draw_params = [&](int k) {
     SolverParams p = inner;
+    p.time_limit_s = std::min(inner.time_limit_s, budget.limit_s());
     p.seed = derive_seed(derive_seed(params.seed, {kNullStream, std::uint64_t(k)}), {1});
     if (workers > 1) p.threads = 1;
     return p;
@@ -189,24 +190,52 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
     return !(optimistic_fit(scores).p_value(observed) < alpha &&
              alpha <= cautious_fit(scores).p_value(observed));
   };
+  // A draw the budget cut short says nothing of chance (a best-so-far below the draw's score),
+  // unless it proved an upper bound: it is dropped, and the draws end there.
+  auto cut = [&](const Result<Dim>& r) {
+    return r.status == Status::time_limit && !r.omega_upper_bound && budget.expired();
+  };
+  bool settled = false, out_of_budget = false;
   if (workers <= 1) {
-    for (int k = 0; k < most; ++k) {
-      if (take(k, solver.solve(null_set(k), draw_params(k)))) break;
+    for (int k = 0; k < most && !settled; ++k) {
+      if (budget.expired()) break;
+      const Result<Dim> r = solver.solve(null_set(k), draw_params(k));
+      if (cut(r)) break;
+      settled = take(k, r);
     }
   } else {
     WorkerPool pool(workers);
     std::vector<Result<Dim>> batch(static_cast<std::size_t>(workers));
-    bool stop = false;
-    for (int first = 0, count = 0; first < most && !stop; first += count) {
+    for (int first = 0, count = 0; first < most && !settled && !out_of_budget; first += count) {
+      if (budget.expired()) break;
       // A batch does not cross the K-th draw, past which most sets are not drawn.
       count = std::min(workers, (first < draws ? draws : most) - first);
       pool.parallel_for(count, [&](int j) {
         batch[static_cast<std::size_t>(j)] = solver.solve(null_set(first + j), draw_params(first + j));
       });
-      for (int j = 0; j < count && !stop; ++j) stop = take(first + j, batch[static_cast<std::size_t>(j)]);
+      for (int j = 0; j < count && !settled; ++j) {
+        const Result<Dim>& r = batch[static_cast<std::size_t>(j)];
+        if (cut(r)) {
+          out_of_budget = true;
+          break;
+        }
+        settled = take(first + j, r);
+      }
     }
   }
-  fit_and_score(c, scores, observed, alpha);
+  // Draws stop by themselves (settled) or at the cap; short of both, the budget ran out.
+  c.budget_exhausted = !settled && static_cast<int>(scores.size()) < most;
+  if (!c.budget_exhausted) {
+    fit_and_score(c, scores, observed, alpha);
+  } else if (static_cast<int>(scores.size()) >= kMinDrawsToAccept) {
+    fit_and_score(c, scores, observed, alpha);
+    c.p_value = c.p_value_high;  // what these few draws can vouch for
+  } else {
+    // Too few draws to say anything: not accepted, p = 1, nothing accepted below the score.
+    if (!scores.empty()) c.null = fit_null(scores);
+    c.p_value = c.p_value_low = c.p_value_high = 1.0;
+    c.threshold = observed + 1;
+  }
   c.ms = clock.ms();
   return c;
 }
@@ -232,7 +261,7 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                                                  std::uint64_t);                              \
   template Correspondences<D> permute_targets<D>(const Correspondences<D>&, std::uint64_t); \
   template Calibration calibrate<D>(const Solver&, const Correspondences<D>&,               \
-                                    const SolverParams&, int);                              \
+                                    const SolverParams&, int, const Deadline&);             \
   template void decide_calibrated<D>(Result<D>&, const Correspondences<D>&, const Calibration&, \
                                      const SolverParams&);
 VB_INSTANTIATE(2)

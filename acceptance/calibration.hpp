@@ -8,6 +8,7 @@
 
 #include "acceptance/null_model.hpp"
 #include "core/correspondences.hpp"
+#include "core/deadline.hpp"
 #include "solvers/solver.hpp"
 
 namespace verifybench {
@@ -47,6 +48,10 @@ struct Calibration {
   bool screened = false;
   int screen_part_size = 0;  ///< when screened: the bounds' part size (kScreenPartSizes)
   double ms = 0.0;          ///< wall time of the null solves
+  /// The pair's budget ran out before the draws settled the decision: the draws made decide by
+  /// their cautious fit (p_value = p_value_high) when there are kMinDrawsToAccept of them, else
+  /// p = 1; either way a decision more time could change (a report's `provisional`).
+  bool budget_exhausted = false;
 };
 
 /// Runs `solver` on up to params.accept.null_draws = K permuted sets (draw k from
@@ -66,10 +71,13 @@ struct Calibration {
 /// on a stochastically larger null); coarse bounds first, finer ones where they do not settle it
 /// (kScreenPartSizes); otherwise the draws run as above, resolve_threads(params.threads) at a
 /// time on one thread each when the solver solves_concurrently() (the same result for any count).
+/// The draws share `budget` (the pair's deadline, verify()): each null solve may take what is
+/// left, and none starts once it passed (budget_exhausted).
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
-                      const SolverParams& params, int observed);
+                      const SolverParams& params, int observed,
+                      const Deadline& budget = Deadline::never());
 
 /// Applies the rule to a finished solve: under `count` leaves the solver's decision; under
 /// `pvalue` accepts when p < alpha, the inliers pin down a motion (pins_motion) and, where the set

@@ -11,12 +11,15 @@ template <int Dim>
 Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
                          const SolverParams& params) {
   Verification<Dim> v;
+  // One budget for the pair: the solve, then whatever is left for the calibrated rule's draws.
+  const Deadline budget(params.time_limit_s);
   StopWatch clock;
   v.result = solver.solve(corr, params);
   v.solve_ms = clock.ms();
   if (params.accept.rule == AcceptParams::Rule::pvalue && v.result.status != Status::error) {
     try {
-      v.calibration = calibrate(solver, corr, params, static_cast<int>(v.result.inliers.size()));
+      v.calibration =
+          calibrate(solver, corr, params, static_cast<int>(v.result.inliers.size()), budget);
       decide_calibrated(v.result, corr, *v.calibration, params);
     } catch (const std::exception& e) {
       v.calibration.reset();

@@ -3,8 +3,10 @@
 // binding, the loop's candidates): the solver's search and fit, then the accept rule: the count
 // rule is the solver's own decision (decide() in solvers/solver.hpp); the calibrated rule fits the
 // pair's permutation null and decides on p (calibration.hpp), with the pose prior's gate where the
-// set carries a prior (prior_gate.hpp). The result is typed: the solver's Result, the calibration
-// when there was one, the prior's d^2.
+// set carries a prior (prior_gate.hpp). params.time_limit_s is the pair's budget: the solve takes
+// what it needs of it (its own limit), and the calibrated rule's null solves share the rest
+// (calibration.hpp: budget_exhausted marks a decision more time could change). The result is
+// typed: the solver's Result, the calibration when there was one, the prior's d^2.
 #include <optional>
 
 #include "acceptance/calibration.hpp"

@@ -26,7 +26,9 @@ void add_solver_options(Options& o, const SolverOptionDefaults& d) {
            "chi-square gate at confidence C (0 = no gate)")
       .add("min-inliers", "K", "0",
            "count rule: accept when inliers >= K; 0 = paper default (5 in 3D, 10 in 2D)")
-      .add("time-limit", "S", "60", "per-solve time limit [s]; best-so-far returned past it")
+      .add("time-limit", "S", "60",
+           "the pair's time budget [s]: the solve, then the pvalue rule's null solves share what "
+           "is left (a decision the budget cut short is marked provisional); best-so-far past it")
       .add("max-graph-mb", "MB", "4096", "refuse correspondence graphs larger than this")
       .add("threads", "T", "1",
            "threads for graph construction and clique-bbmc-dec (0 = all cores); results do not "

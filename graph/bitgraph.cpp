@@ -9,7 +9,7 @@ namespace verifybench {
 BitGraph::BitGraph(int n)
     : n_(n),
       words_((n + kWordBits - 1) / kWordBits),
-      bits_(static_cast<std::size_t>(n) * static_cast<std::size_t>(words_), 0) {}
+      bits_(static_cast<std::size_t>(n) * static_cast<std::size_t>(words_)) {}
 
 std::size_t BitGraph::bytes_for(std::size_t n) {
   return n * ((n + kWordBits - 1) / kWordBits) * sizeof(Word);

@@ -30,6 +30,7 @@ TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_n
     r.null_draws = c->null.draws;
     r.null_limited_draws = c->limited_draws;
     r.null_screened = c->screened;
+    r.provisional = c->budget_exhausted;
     r.calibration_ms = c->ms;
   }
   r.solver = solver_name;

@@ -185,6 +185,7 @@ json to_json(const TrialRecord& r) {
             {"null_draws", r.null_draws},
             {"null_limited_draws", r.null_limited_draws},
             {"null_screened", r.null_screened},
+            {"provisional", r.provisional},
             {"calibration_ms", r.calibration_ms},
             {"distinct_inliers", r.distinct_inliers ? json(*r.distinct_inliers) : json(nullptr)},
             {"lever_arm", number_or_null(r.lever_arm)},

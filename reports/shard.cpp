@@ -125,6 +125,7 @@ TrialRecord trial_from_json(const json& j) {
   r.null_draws = get<int>(j, "null_draws");
   r.null_limited_draws = get<int>(j, "null_limited_draws");
   r.null_screened = optional<bool>(j, "null_screened").value_or(false);  // absent before it existed
+  r.provisional = optional<bool>(j, "provisional").value_or(false);      // absent before it existed
   r.calibration_ms = get<double>(j, "calibration_ms");
   r.distinct_inliers = optional<int>(j, "distinct_inliers");
   r.lever_arm = real_or_nan(j, "lever_arm");

@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <chrono>
 #include <random>
+#include <thread>
 
 #include "acceptance/calibration.hpp"
 #include "core/chi2.hpp"
@@ -718,6 +720,75 @@ TEST(Verify, EachRuleDecidesByItsDefinition) {
   EXPECT_FALSE(gated.result.accepted);
   p.accept.rule = AcceptParams::Rule::count;
   EXPECT_TRUE(verify(*solver, set.corr, p).result.accepted);
+}
+
+}  // namespace
+}  // namespace verifybench
+
+namespace verifybench {
+namespace {
+
+// A solver whose every solve takes `ms` (cut at its limit, then status time_limit): 50 inliers
+// on the first set it sees (the pair), 2-4 on the rest (the null's permuted sets). It records
+// the limit each call was given.
+class SlowSolver : public Solver {
+ public:
+  explicit SlowSolver(double ms) : ms_(ms) {}
+  Result<2> solve(const Correspondences<2>& c, const SolverParams& p) const override {
+    return run<2>(c, p);
+  }
+  Result<3> solve(const Correspondences<3>& c, const SolverParams& p) const override {
+    return run<3>(c, p);
+  }
+  std::optional<int> score_bound(const Correspondences<2>&, const SolverParams&, int) const override {
+    return std::nullopt;
+  }
+  std::optional<int> score_bound(const Correspondences<3>&, const SolverParams&, int) const override {
+    return std::nullopt;
+  }
+  mutable std::vector<double> limits;
+
+ private:
+  template <int Dim>
+  Result<Dim> run(const Correspondences<Dim>&, const SolverParams& p) const {
+    limits.push_back(p.time_limit_s);
+    const double take = std::min(ms_, p.time_limit_s * 1000.0);
+    std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(take));
+    Result<Dim> r;
+    const int score = limits.size() == 1 ? 50 : 2 + static_cast<int>(limits.size() % 3);
+    for (int i = 0; i < score; ++i) r.inliers.push_back(i);
+    r.accepted = true;
+    r.status = take < ms_ ? Status::time_limit : Status::ok;
+    return r;
+  }
+  double ms_;
+};
+
+// --time-limit is the pair's budget (verify()): a solve of 60 ms leaves 40 ms of a 0.1 s budget,
+// the one null solve started gets only those and is cut, so no draw counts: p = 1, not accepted,
+// provisional. With room to spare the same solver settles early and accepts.
+TEST(Verify, TheNullSolvesShareWhatTheSolveLeftOfThePairsBudget) {
+  const LabeledSet<3> set = draw<3>(100, 0.5, 3);
+  SolverParams p;
+  p.time_limit_s = 0.1;
+  SlowSolver slow(60.0);
+  const Verification<3> tight = verify(slow, set.corr, p);
+  ASSERT_TRUE(tight.calibration.has_value());
+  EXPECT_TRUE(tight.calibration->budget_exhausted);
+  EXPECT_EQ(tight.calibration->p_value, 1.0);
+  EXPECT_FALSE(tight.result.accepted);
+  ASSERT_GE(slow.limits.size(), 2u);
+  EXPECT_LE(slow.limits.size(), 3u);
+  EXPECT_DOUBLE_EQ(slow.limits[0], 0.1);
+  EXPECT_LT(slow.limits[1], 0.06);  // what the solve left, not another 0.1 s
+  p.time_limit_s = 30.0;
+  SlowSolver quick(1.0);
+  const Verification<3> ample = verify(quick, set.corr, p);
+  ASSERT_TRUE(ample.calibration.has_value());
+  EXPECT_FALSE(ample.calibration->budget_exhausted);
+  EXPECT_GE(ample.calibration->null.draws, kMinDrawsToAccept);
+  EXPECT_LT(ample.calibration->null.draws, p.accept.null_draws);  // settled early, by the draws
+  EXPECT_TRUE(ample.result.accepted);
 }
 
 }  // namespace

@@ -170,6 +170,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;
   out["prior_d2"] = v.prior_d2 ? py::object(py::float_(*v.prior_d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
+  out["provisional"] = calibration ? calibration->budget_exhausted : false;
   return out;
 }
 
