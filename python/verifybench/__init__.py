@@ -6,8 +6,9 @@
     r["inliers"], r["T"], r["accepted"]
     df = vb.load_report("out/sweep.json")        # one row per result, as pandas
 
-The compiled part (_core) is built by the project's CMake into build/python/verifybench; put
-build/python on PYTHONPATH and use Debian's /usr/bin/python3.
+The compiled part (_core) is built by the project's CMake into build/python/verifybench: put
+build/python on PYTHONPATH, or install the package (`cmake --install build`, or
+`pip install --no-build-isolation .` from the source tree); use Debian's /usr/bin/python3.
 """
 import json
 
