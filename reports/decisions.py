@@ -126,7 +126,7 @@ def main():
     if errors:
         print(f"\n{errors} error rows left out")
     if args.plot:
-        plot(rows, solvers, args.plot)
+        plot(rows, solvers, args.plot, args.count)
 
 
 def curve(rows, accept):
@@ -138,41 +138,113 @@ def curve(rows, accept):
     return fpr, tpr, (prec if prec is not None else 1.0), (rec if rec is not None else float("nan"))
 
 
-def plot(rows, solvers, path):
+def op_text(op):
+    """An operating point's rates for a legend: ' (FAR 0.00, TAR 0.91, P 1.00)'."""
+    fpr, tpr, prec, _ = op
+    f = lambda v: "-" if v != v else f"{v:.2f}"  # noqa: E731
+    return f" (FAR {f(fpr)}, TAR {f(tpr)}, P {f(prec)})"
+
+
+def build_decisions(rows, solvers, count=0):
+    """The ROC and precision-recall figure of `rows` (load_rows), per solver: the calibrated rule
+    over alpha and the count rule over K, with each rule's operating point as the reports ran it
+    (the rows' own decisions at the reports' alpha; inliers >= K at `count`, 0: 5 in 3D, 10 in
+    2D) marked. Returns the matplotlib Figure."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (roc, pr) = plt.subplots(1, 2, figsize=(11, 4.5))
+    from matplotlib.lines import Line2D
+    import plot_report as pr_lib
+    fig, (roc, pr) = plt.subplots(1, 2, figsize=(2 * pr_lib.PANEL_W + 3.2, pr_lib.PANEL_H + 1.3),
+                                  sharex=True, sharey=True)
     alphas = [10.0 ** e for e in range(-16, 0)]
+    markers = "o^v<>"  # not the operating points' star and diamond
+    run_alphas = sorted({r["_alpha"] for r in rows if r.get("_alpha") is not None})
+    alpha_text = ", ".join(f"{a:g}" for a in run_alphas) or "?"
+    dims = sorted({r["dim"] for r in rows})
+    k_text = " / ".join(f"{count_threshold({'dim': d}, count)} ({d}D)" for d in dims)
+
+    drawn = []  # the ROC's curves, drawn again in its zoom
+
+    def draw(k, xs, ys, fmt, gid, label, **kw):
+        drawn.append((k, xs, fmt, gid, kw))
+        for ax, (x, y) in ((roc, xs), (pr, ys)):
+            tr = pr_lib.nudge(fig, ax, k, len(solvers))
+            (line,) = ax.plot(x, y, fmt, transform=tr, label=label if ax is pr else None, **kw)
+            line.set_gid(f"{'roc' if ax is roc else 'pr'}:{gid}")
+
     for k, s in enumerate(solvers):
         mine = [r for r in rows if r["solver"] == s]
-        colour = f"C{k}"
+        colour, marker = f"C{k}", markers[k % len(markers)]
         counts = sorted(set(r["inliers"] for r in mine) | {0})
         cnt = [curve(mine, lambda r, c=c: r["inliers"] >= c) for c in counts]
-        roc.plot([c[0] for c in cnt], [c[1] for c in cnt], "--", color=colour, label=f"{s}: count K")
-        pr.plot([c[3] for c in cnt], [c[2] for c in cnt], "--", color=colour, label=f"{s}: count K")
+        draw(k, ([c[0] for c in cnt], [c[1] for c in cnt]), ([c[3] for c in cnt], [c[2] for c in cnt]),
+             "--", f"count:{s}", f"{s}: count rule over K", color=colour, lw=1.2)
         pv = [r for r in mine if r.get("p_value") is not None]
         if pv:
             cal = [curve(pv, lambda r, a=a: r["p_value"] < a and r["inliers"] >= 3) for a in alphas]
-            roc.plot([c[0] for c in cal], [c[1] for c in cal], "o-", color=colour, ms=3,
-                     label=f"{s}: p < alpha")
-            pr.plot([c[3] for c in cal], [c[2] for c in cal], "o-", color=colour, ms=3,
-                    label=f"{s}: p < alpha")
+            draw(k, ([c[0] for c in cal], [c[1] for c in cal]), ([c[3] for c in cal], [c[2] for c in cal]),
+                 "-", f"alpha:{s}", f"{s}: p < alpha, alpha 1e-16..0.1", color=colour, lw=1.2,
+                 marker=marker, ms=3.5)
+        # Operating points: the decisions as the reports made them.
+        calibrated = [r for r in mine if r.get("accept_rule") == "pvalue"]
+        if calibrated:
+            op = curve(calibrated, lambda r: bool(r["accepted"]))
+            draw(k, ([op[0]], [op[1]]), ([op[3]], [op[2]]), "*", f"operating:pvalue:{s}",
+                 f"{s}: as run, p < {alpha_text}{op_text(op)}", color=colour, ms=14, mec="k", mew=0.8, zorder=5)
+        op = curve(mine, lambda r: r["inliers"] >= count_threshold(r, count))
+        draw(k, ([op[0]], [op[1]]), ([op[3]], [op[2]]), "D", f"operating:count:{s}",
+             f"{s}: inliers >= {k_text}{op_text(op)}", color=colour, ms=7.5, mec="k", mew=0.8, zorder=5)
+    positives = sum(r["expected"] == "positive" for r in rows)
     roc.set_xlabel("false accept rate (negatives accepted)")
     roc.set_ylabel("true accept rate (positives accepted)")
-    roc.set_title("ROC of the accept decision")
+    roc.set_title("ROC of the accept decision", fontsize=9)
     pr.set_xlabel("recall")
     pr.set_ylabel("precision")
-    pr.set_title("precision-recall of the accept decision")
+    pr.tick_params(labelleft=True)
+    pr.set_title("precision-recall of the accept decision", fontsize=9)
     for ax in (roc, pr):
         ax.grid(alpha=0.3)
-        ax.set_xlim(-0.02, 1.02)
-        ax.set_ylim(-0.02, 1.02)
-    pr.legend(fontsize=7, loc="lower left")
+        ax.set_xlim(-0.03, 1.03)
+        ax.set_ylim(-0.03, 1.03)
+    # Operating points near a false accept rate of 0 crowd the ROC's corner: a zoom shows them.
+    ops = [(xs[0][0], xs[1][0]) for _, xs, _, gid, _ in drawn if gid.startswith("operating:")]
+    ops = [(x, y) for x, y in ops if x == x and y == y]
+    if ops and max(x for x, _ in ops) <= 0.1:
+        zoom = roc.inset_axes([0.36, 0.1, 0.6, 0.55])
+        zoom.set_gid("roc_zoom")
+        for k, xs, fmt, gid, kw in drawn:
+            (line,) = zoom.plot(*xs, fmt, transform=pr_lib.nudge(fig, zoom, k, len(solvers)), **kw)
+            line.set_gid(f"zoom:{gid}")
+        right = max(0.05, 1.5 * max(x for x, _ in ops))
+        bottom = max(-0.02, min(y for _, y in ops) - 0.15)
+        zoom.set_xlim(-0.1 * right, right)
+        zoom.set_ylim(bottom, 1.0 + 0.1 * (1.0 - bottom))
+        zoom.tick_params(labelsize=7)
+        zoom.grid(alpha=0.3)
+        zoom.set_title("zoom", fontsize=7, pad=2)
+        roc.indicate_inset_zoom(zoom, edgecolor="0.4")
+    handles, labels = pr.get_legend_handles_labels()
+    handles.append(Line2D([], [], linestyle="none"))
+    labels.append(f"star / diamond: operating points;\nsolvers drawn {pr_lib.OFFSET_PT:g} pt apart "
+                  "so equal curves stay visible")
+    pr.legend(handles, labels, fontsize=7, loc="upper left", bbox_to_anchor=(1.03, 1.0),
+              borderaxespad=0.0)
+    fig.suptitle(f"accept decisions on {positives} positive sets and {len(rows) - positives} "
+                 f"negative twins (positive: the sides share the true motion)\n"
+                 f"calibrated rule: accept when p < alpha (the reports ran alpha = {alpha_text}); "
+                 f"count rule: accept when inliers >= K (K = {k_text})", fontsize=9)
     fig.tight_layout()
+    return fig
+
+
+def plot(rows, solvers, path, count=0):
+    import matplotlib.pyplot as plt
+    fig = build_decisions(rows, solvers, count)
     tmp = path + ".tmp.png"
     fig.savefig(tmp, dpi=110)
     os.replace(tmp, path)
+    plt.close(fig)
     print(f"\nplot: {path}")
 
 

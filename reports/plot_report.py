@@ -1,15 +1,21 @@
 #!/usr/bin/python3
 """Plots of verifybench reports, as PNG and PDF.
 
-Sweep reports: DIR/<stem>_success.{png,pdf} (success rate vs outlier ratio, 95% Wilson intervals)
-and DIR/<stem>_time.{png,pdf} (median time per solve, log scale, quartile band), one panel per
-(generator, dimension), one curve per (solver, n). Several sweeps (other n, other generators) are
-drawn together; each panel is titled from its own report.
-Dump reports (`verifybench run`): DIR/<stem>_dump.{png,pdf}: time per solve (median, quartiles)
-and inliers per solver, for each dump.
-DIMACS reports: DIR/<stem>_dimacs.{png,pdf}: search time per graph and algorithm (log scale);
-hatched bars did not prove optimality.
+Sweep reports: DIR/<stem>_success.{png,pdf} (success rate vs outlier ratio, 95% Wilson intervals,
+and the false accept rate of the negative twins where the sweep drew them) and DIR/<stem>_time.
+{png,pdf} (median time per solve, quartile band): a grid with one row per generator (per report
+where two reports share a generator and a curve) and one column per dimension, shared axes, one
+curve per (solver, n). Each panel's title names the accept rule, the figure's the success
+criterion. Time axes are linear unless the medians span more than 100x (then log, and the axis
+says so).
+Dump reports (`verifybench run`): DIR/<stem>_dump.{png,pdf}: time per solve (median, quartiles;
+linear unless the span exceeds 100x) and selected inliers per solver, one row per dump.
+DIMACS reports: DIR/<stem>_dimacs.{png,pdf}: search time per graph and algorithm (log scale when
+the times span more than 100x); hatched bars did not prove optimality.
 The stem is the first report's file name unless --name gives one; DIR (--out-dir) is created.
+
+From Python, build_sweep(reports, "success"|"time"), build_dump(reports) and build_dimacs(reports)
+return the matplotlib Figure without saving it.
 """
 import argparse
 import os
@@ -19,7 +25,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.ticker import FuncFormatter, LogLocator  # noqa: E402
+from matplotlib.transforms import ScaledTranslation  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import report_io  # noqa: E402
@@ -27,11 +35,18 @@ import report_io  # noqa: E402
 TOOL = "plot_report"
 MARKERS = "osD^vP*X"
 LINESTYLES = ["-", "--", "-.", ":"]
+PANEL_W, PANEL_H = 4.5, 3.4  # inches per panel
+LOG_SPAN = 100.0  # a time axis turns logarithmic only beyond this max / min ratio
+OFFSET_PT = 2.0  # curves of different solvers are drawn this many points apart
+DPI = 110
 
 
 def fail(msg):
     report_io.fail(TOOL, msg)
 
+
+# ---------------------------------------------------------------------------------------------
+# Shared by the plot scripts (plot_loop.py and decisions.py import these).
 
 def colours(names):
     cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -40,50 +55,106 @@ def colours(names):
     return {s: cycle[i % len(cycle)] for i, s in enumerate(sorted(names))}
 
 
-def save(fig, out_dir, stem, suffix):
-    """Writes PNG and PDF through temporary names, so no half-written plot has the final name."""
+def accept_rule_text(parameters, dim=None):
+    """The accept rule a report ran with, in words: 'accept: p < 0.001 (permutation null)' or
+    'accept: inliers >= 5'. `dim` picks the count rule's default threshold (5 in 3D, 10 in 2D);
+    without it both are named."""
+    rule = parameters.get("accept_rule")
+    if rule == "pvalue":
+        return f"accept: p < {parameters.get('alpha')} (the pair's permutation null)"
+    if rule == "count":
+        k = parameters.get("min_inliers") or 0
+        if k:
+            return f"accept: inliers >= {k}"
+        k2, k3 = parameters.get("accept_threshold_2d", 10), parameters.get("accept_threshold_3d", 5)
+        if dim in (2, 3):
+            return f"accept: inliers >= {k2 if dim == 2 else k3}"
+        return f"accept: inliers >= {k3} (3D) / {k2} (2D)"
+    return f"accept rule: {rule}" if rule else "accept rule: not recorded"
+
+
+def count_threshold(parameters, dim):
+    """K of the count rule at `dim` as the report ran it."""
+    k = parameters.get("min_inliers") or 0
+    return k or parameters.get(f"accept_threshold_{dim}d", 10 if dim == 2 else 5)
+
+
+def time_scale(values):
+    """'log' when the positive values span more than LOG_SPAN (max / min), else 'linear'."""
+    v = [x for x in values if x is not None and x == x and x > 0]
+    if len(v) < 2:
+        return "linear"
+    return "log" if max(v) / min(v) > LOG_SPAN else "linear"
+
+
+def log_axis(axis, ax):
+    """Log scale labelled at 1, 2 and 5 of every decade, not only at the decades. `axis`: 'x'|'y'."""
+    getattr(ax, f"set_{axis}scale")("log")
+    plain = FuncFormatter(lambda v, _: f"{v:g}")
+    a = ax.xaxis if axis == "x" else ax.yaxis
+    a.set_major_locator(LogLocator(base=10))
+    a.set_major_formatter(plain)
+    a.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
+    a.set_minor_formatter(plain)
+    ax.tick_params(axis=axis, which="minor", labelsize=7)
+
+
+def nudge(fig, ax, k, count, points=OFFSET_PT, vertical=True):
+    """A data transform shifted by a few points for the k-th of `count` curves, so curves with
+    equal values stay visible side by side; the line's data stay the report's values."""
+    d = (k - (count - 1) / 2) * points / 72.0
+    return ax.transData + ScaledTranslation(d, d if vertical else 0.0, fig.dpi_scale_trans)
+
+
+def save_figure(fig, base, exts=("png", "pdf")):
+    """Writes base.<ext> for each ext through a temporary name, so no half-written plot has the
+    final name; closes the figure. Returns the paths."""
     paths = []
-    for ext in ("png", "pdf"):
-        path = os.path.join(out_dir, f"{stem}_{suffix}.{ext}")
+    for ext in exts:
+        path = f"{base}.{ext}"
         tmp = f"{path}.tmp.{ext}"
-        fig.savefig(tmp, dpi=110)
+        fig.savefig(tmp, dpi=DPI)
         os.replace(tmp, path)
         paths.append(path)
     plt.close(fig)
     return paths
 
 
-def log_axis(ax):
-    """Log scale labelled at 1, 2 and 5 of every decade, not only at the decades."""
-    ax.set_yscale("log")
-    plain = FuncFormatter(lambda v, _: f"{v:g}")
-    ax.yaxis.set_major_locator(LogLocator(base=10))
-    ax.yaxis.set_major_formatter(plain)
-    ax.yaxis.set_minor_locator(LogLocator(base=10, subs=(2, 5)))
-    ax.yaxis.set_minor_formatter(plain)
-    ax.tick_params(axis="y", which="minor", labelsize=7)
-    ax.grid(True, which="both", alpha=0.3)
-
+# ---------------------------------------------------------------------------------------------
+# Sweeps
 
 def sweep_series(reports):
-    """{(generator, dim): {"doc": first report, "curves": {(solver, n): DataFrame by ratio}}}."""
-    panels = {}
-    for doc in reports:
+    """{(row, dim): {"doc", "generator", "curves": {(solver, n): [points]}, "fa": {...}}}, and the
+    row order. A row is a generator; reports that share a generator and a (dim, solver, n) curve
+    get a row each."""
+    panels, rows_order, claimed = {}, [], {}
+    for k, doc in enumerate(reports):
         rows = report_io.results_frame(doc)
+        if "outlier_ratio" not in rows.columns:
+            continue
         rows = rows[rows["outlier_ratio"].notna()]
         if rows.empty:
             continue
         generator = doc["parameters"]["sweep"].get("generator", "uniform")
+        curves = {(d, s, n) for d, s, n in zip(rows["dim"], rows["solver"], rows["n"])}
+        row = generator
+        if claimed.get(generator, set()) & curves:
+            row = f"{generator} (report {k + 1})"
+        claimed.setdefault(row, set()).update(curves)
+        if row not in rows_order:
+            rows_order.append(row)
         if "expected" in rows.columns:  # negative twins (--negatives): their false accept rate
             negative = rows["expected"] == "negative"
             for (dim, solver, n, ratio), g in rows[negative].groupby(["dim", "solver", "n",
                                                                        "outlier_ratio"]):
-                panel = panels.setdefault((generator, dim), {"doc": doc, "curves": {}, "fa": {}})
-                panel.setdefault("fa", {}).setdefault((solver, n), []).append(
+                panel = panels.setdefault((row, dim), {"doc": doc, "generator": generator,
+                                                       "curves": {}, "fa": {}})
+                panel["fa"].setdefault((solver, n), []).append(
                     {"ratio": ratio, "fa": g["accepted"].astype(bool).mean()})
             rows = rows[~negative]
         for (dim, solver, n, ratio), g in rows.groupby(["dim", "solver", "n", "outlier_ratio"]):
-            panel = panels.setdefault((generator, dim), {"doc": doc, "curves": {}})
+            panel = panels.setdefault((row, dim), {"doc": doc, "generator": generator,
+                                                   "curves": {}, "fa": {}})
             judged = g["success"].dropna()
             lo, hi = report_io.wilson_interval(judged.astype(bool).sum(), len(judged))
             times = g["time_ms"]
@@ -92,112 +163,249 @@ def sweep_series(reports):
                 "success": judged.astype(bool).mean() if len(judged) else float("nan"),
                 "lo": lo, "hi": hi,
                 "median": times.median(), "q1": times.quantile(0.25), "q3": times.quantile(0.75)})
-    return panels
+    return panels, rows_order
 
 
-def plot_sweeps(reports, out_dir, stem):
-    panels = sweep_series(reports)
+def grid(nrows, ncols, extra_w=2.9, extra_h=0.7, **kw):
+    fig, axes = plt.subplots(nrows, ncols, figsize=(PANEL_W * ncols + extra_w,
+                                                    PANEL_H * nrows + extra_h),
+                             squeeze=False, **kw)
+    return fig, axes
+
+
+def build_sweep(reports, kind):
+    """The success ('success') or time ('time') figure of sweep reports: a grid of panels, rows =
+    generators, columns = dimensions."""
+    if kind not in ("success", "time"):
+        raise ValueError(f"kind must be 'success' or 'time', not {kind!r}")
+    panels, row_keys = sweep_series(reports)
     if not panels:
         fail("no sweep points (rows with an outlier_ratio) in the sweep reports")
-    keys = sorted(panels)
-    solvers = sorted({s for p in panels.values() for s, _ in p["curves"]})
+    dims = sorted({d for _, d in panels})
+    solvers = sorted({s for p in panels.values() for s, _ in list(p["curves"]) + list(p["fa"])})
     sizes = sorted({n for p in panels.values() for _, n in p["curves"]})
     colour = colours(solvers)
-    marker = {n: MARKERS[i % len(MARKERS)] for i, n in enumerate(sizes)}
-    # Curves that coincide (two solvers at 100%) stay visible: each solver is shifted slightly
-    # along x and drawn in its own line style.
-    ratios = sorted({pt["ratio"] for p in panels.values() for c in p["curves"].values() for pt in c})
-    step = min((b - a for a, b in zip(ratios, ratios[1:])), default=0.05)
-    offset = {s: (i - (len(solvers) - 1) / 2) * step * 0.12 for i, s in enumerate(solvers)}
-    style = {s: LINESTYLES[i % len(LINESTYLES)] for i, s in enumerate(solvers)}
-    paths = []
-    for kind in ("success", "time"):
-        fig, axes = plt.subplots(1, len(keys), figsize=(7.5 * len(keys), 5.0), squeeze=False)
-        for ax, key in zip(axes[0], keys):
-            generator, dim = key
-            doc = panels[key]["doc"]
-            for (solver, n), pts in sorted(panels[key]["curves"].items()):
+    marker = {s: MARKERS[i % len(MARKERS)] for i, s in enumerate(solvers)}
+    style = {n: LINESTYLES[i % len(LINESTYLES)] for i, n in enumerate(sizes)}
+    has_fa = any(p["fa"] for p in panels.values())
+    scale = "linear"
+    if kind == "time":
+        scale = time_scale([pt["median"] for p in panels.values() for c in p["curves"].values()
+                            for pt in c])
+    criteria = {report_io.success_criterion(p["doc"]) for p in panels.values()}
+    legend_below = len(dims) == 1  # one column: the legend goes under the grid, not beside it
+    n_entries = len({(s, n) for p in panels.values() for s, n in p["curves"]}) + (
+        len({(s, n) for p in panels.values() for s, n in p["fa"]}) if kind == "success" else 0) + 1
+    fig, axes = grid(len(row_keys), len(dims), sharex=True, sharey=True,
+                     extra_w=0.9 if legend_below else 2.9,
+                     extra_h=0.7 + (0.1 + 0.15 * n_entries if legend_below else 0.0))
+    handles = {}
+    for r, row in enumerate(row_keys):
+        first = True
+        for c, dim in enumerate(dims):
+            ax = axes[r][c]
+            panel = panels.get((row, dim))
+            if panel is None:
+                ax.set_axis_off()
+                continue
+            doc = panel["doc"]
+            for (solver, n), pts in sorted(panel["curves"].items()):
                 pts = sorted(pts, key=lambda p: p["ratio"])
-                x = [p["ratio"] + offset[solver] for p in pts]
-                kw = {"color": colour[solver], "marker": marker[n], "linestyle": style[solver],
-                      "label": f"{solver} (n={n})", "markersize": 4}
+                x = [p["ratio"] for p in pts]
+                tr = nudge(fig, ax, solvers.index(solver), len(solvers), vertical=kind == "success")
+                kw = {"color": colour[solver], "marker": marker[solver], "linestyle": style[n],
+                      "markersize": 4.5, "transform": tr}
+                label = f"{solver} (n={n})"
                 if kind == "success":
                     y = [p["success"] for p in pts]
                     err = [[p["success"] - p["lo"] for p in pts], [p["hi"] - p["success"] for p in pts]]
-                    ax.errorbar(x, y, yerr=err, capsize=2, elinewidth=0.8, **kw)
+                    ax.errorbar(x, y, yerr=err, fmt="none", ecolor=colour[solver], capsize=2,
+                                elinewidth=0.8, transform=tr, alpha=0.8)
+                    label += ": success rate, 95% Wilson interval"
                 else:
-                    ax.plot(x, [p["median"] for p in pts], **kw)
+                    y = [p["median"] for p in pts]
                     ax.fill_between(x, [p["q1"] for p in pts], [p["q3"] for p in pts],
-                                    color=colour[solver], alpha=0.15, linewidth=0)
-            for (solver, n), pts in sorted(panels[key].get("fa", {}).items()):
-                if kind != "success":
-                    break
-                pts = sorted(pts, key=lambda p: p["ratio"])
-                ax.plot([p["ratio"] + offset.get(solver, 0) for p in pts], [p["fa"] for p in pts],
-                        color=colour.get(solver, "k"), marker="x", linestyle=":", markersize=4,
-                        label=f"{solver} (n={n}): false accepts of negatives")
-            ax.set_xlabel("outlier ratio")
+                                    color=colour[solver], alpha=0.18, linewidth=0, transform=tr)
+                    label += ": median, quartile band"
+                (line,) = ax.plot(x, y, label=label, **kw)
+                line.set_gid(f"{kind}:{solver}:{n}")
+                handles.setdefault(label, line)
             if kind == "success":
-                ax.set_ylabel("success rate (bars: 95% Wilson interval); dotted: false accepts")
-                ax.set_ylim(-0.03, 1.03)
-                ax.grid(True, alpha=0.3)
+                for (solver, n), pts in sorted(panel["fa"].items()):
+                    pts = sorted(pts, key=lambda p: p["ratio"])
+                    label = f"{solver} (n={n}): false accepts of negative twins"
+                    (line,) = ax.plot([p["ratio"] for p in pts], [p["fa"] for p in pts],
+                                      color=colour[solver], marker="x", linestyle=":",
+                                      markersize=5, label=label,
+                                      transform=nudge(fig, ax, solvers.index(solver), len(solvers)))
+                    line.set_gid(f"false_accepts:{solver}:{n}")
+                    handles.setdefault(label, line)
+                ax.set_ylim(-0.04, 1.04)
+            elif scale == "log":
+                log_axis("y", ax)
             else:
-                ax.set_ylabel("time per solve [ms] (line: median, band: quartiles)")
-                log_axis(ax)
+                ax.set_ylim(bottom=0)
+            ax.grid(True, which="both", alpha=0.3)
             sweep = doc["parameters"]["sweep"]
-            ax.set_title(f"{generator}, {dim}D, noise {sweep.get('noise')}, eps "
-                         f"{doc['parameters'].get('eps')}, {sweep.get('trials')} trials/point",
-                         fontsize=9)
-            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-        fig.suptitle(report_io.success_criterion(reports[0]), fontsize=9)
-        fig.tight_layout()
-        paths += save(fig, out_dir, stem, kind)
+            ns = sorted({n for _, n in panel["curves"]})
+            title = (f"{row}, {dim}D: n {', '.join(map(str, ns))}, noise {sweep.get('noise')}, "
+                     f"eps {doc['parameters'].get('eps')}, {sweep.get('trials')} trials/point\n"
+                     f"{accept_rule_text(doc['parameters'], dim)}")
+            if len(criteria) > 1:
+                title += f"\n{report_io.success_criterion(doc)}"
+            ax.set_title(title, fontsize=8)
+            if first:  # one y label per row, on its first panel
+                if kind == "success":
+                    ylabel = "success rate" + (" / false accept rate" if has_fa else "")
+                else:
+                    ylabel = "time per solve [ms]" + (", log scale" if scale == "log" else "")
+                ax.set_ylabel(f"{panel['generator']}\n{ylabel}", fontsize=9)
+                ax.tick_params(labelleft=True)
+                first = False
+            else:
+                ax.tick_params(labelleft=False)
+            # x labels on the lowest panel of each column
+            lower = [rr for rr in range(r + 1, len(row_keys)) if (row_keys[rr], dim) in panels]
+            if not lower:
+                ax.set_xlabel("outlier ratio")
+                ax.tick_params(labelbottom=True)
+    note = (f"solvers drawn {OFFSET_PT:g} pt apart"
+            + (" (x and y)" if kind == "success" else " (x)") + " so equal curves stay visible")
+    entries = (list(handles.values()) + [Line2D([], [], linestyle="none")],
+               list(handles.keys()) + [note])
+    if legend_below:
+        bottom = [axes[r][0] for r in range(len(row_keys)) if axes[r][0].axison][-1]
+        bottom.legend(*entries, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2),
+                      borderaxespad=0.0)
+    else:  # right of the top-right panel
+        top_right = next(axes[0][c] for c in reversed(range(len(dims))) if axes[0][c].axison)
+        top_right.legend(*entries, fontsize=7, loc="upper left", bbox_to_anchor=(1.03, 1.0),
+                         borderaxespad=0.0)
+    head = ("success rate vs outlier ratio" if kind == "success"
+            else "time per solve vs outlier ratio (positive sets)")
+    fig.suptitle(head + ("\n" + criteria.pop() if len(criteria) == 1 else ""), fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_sweeps(reports, out_dir, stem):
+    paths = []
+    for kind in ("success", "time"):
+        paths += save_figure(build_sweep(reports, kind), os.path.join(out_dir, f"{stem}_{kind}"))
     return paths
 
 
-def plot_dumps(reports, out_dir, stem):
+# ---------------------------------------------------------------------------------------------
+# Dumps
+
+def dump_stats(rows):
+    """Per solver: median and quartiles of time_ms, median inliers, max true inliers, success rate,
+    accepted count and trials (rows of one dump)."""
+    return rows.groupby("solver", sort=False).agg(
+        median=("time_ms", "median"),
+        q1=("time_ms", lambda t: t.quantile(0.25)),
+        q3=("time_ms", lambda t: t.quantile(0.75)),
+        inliers=("inliers", "median"),
+        true_inliers=("true_inliers", "max"),
+        accepted=("accepted", lambda a: int(a.astype(bool).sum())),
+        trials=("time_ms", "size"),
+        success=("success", lambda s: s.dropna().astype(bool).mean()
+                 if s.notna().any() else float("nan")))
+
+
+def build_dump(reports):
+    """Time per solve and selected inliers per solver: one row per dump, shared axes per column."""
     import pandas as pd
-    rows = pd.concat([report_io.results_frame(d) for d in reports], ignore_index=True)
-    if rows.empty:
+    frames = []
+    for doc in reports:
+        f = report_io.results_frame(doc)
+        if not f.empty:
+            f["_doc"] = [doc] * len(f)
+            frames.append(f)
+    if not frames:
         fail("the dump reports hold no rows")
-    datasets = sorted(rows["dataset"].unique())
-    colour = colours(rows["solver"].unique())
-    fig, axes = plt.subplots(len(datasets), 2, figsize=(12, 1.2 + 0.45 * rows["solver"].nunique()
-                                                        * len(datasets)), squeeze=False)
-    for (ax_t, ax_i), dataset in zip(axes, datasets):
-        g = rows[rows["dataset"] == dataset]
-        stats = g.groupby("solver").agg(median=("time_ms", "median"),
-                                        q1=("time_ms", lambda t: t.quantile(0.25)),
-                                        q3=("time_ms", lambda t: t.quantile(0.75)),
-                                        inliers=("inliers", "median"),
-                                        true_inliers=("true_inliers", "max"),
-                                        success=("success", lambda s: s.dropna().astype(bool).mean()
-                                                 if s.notna().any() else float("nan")))
-        stats = stats.sort_values("median")
-        y = range(len(stats))
-        ax_t.barh(y, stats["median"], xerr=[stats["median"] - stats["q1"], stats["q3"] - stats["median"]],
-                  color=[colour[s] for s in stats.index], capsize=2)
-        ax_t.set_yticks(list(y), stats.index, fontsize=8)
-        ax_t.set_xscale("log")
-        ax_t.set_xlabel("time per solve [ms] (median, quartiles)")
-        ax_t.set_title(os.path.basename(str(dataset).rstrip("/")), fontsize=9)
+    rows = pd.concat(frames, ignore_index=True)
+    datasets = list(dict.fromkeys(rows["dataset"]))
+    solvers = list(dict.fromkeys(rows["solver"]))
+    colour = colours(solvers)
+    stats = {d: dump_stats(rows[rows["dataset"] == d]).reindex(solvers) for d in datasets}
+    scale = time_scale([m for s in stats.values() for m in s["median"]])
+    row_h = max(1.6, 0.75 + 0.38 * len(solvers))
+    fig, axes = plt.subplots(len(datasets), 2, figsize=(2 * PANEL_W + 0.6, row_h * len(datasets) + 0.8),
+                             squeeze=False, sharex="col")
+    y = list(range(len(solvers)))
+    # the inlier panels' annotations stand in a column right of every bar and line
+    marks = [v for st in stats.values() for v in list(st["inliers"]) + list(st["true_inliers"])
+             if v == v]
+    marks += [count_threshold(d.get("parameters", {}), int(dm)) for d, dm in zip(rows["_doc"], rows["dim"])
+              if d.get("parameters", {}).get("accept_rule") == "count"]
+    right = 1.03 * max(marks + [1])
+    for r, ((ax_t, ax_i), dataset) in enumerate(zip(axes, datasets)):
+        s = stats[dataset]
+        doc = rows[rows["dataset"] == dataset]["_doc"].iloc[0]
+        params = doc.get("parameters", {})
+        dim = int(rows[rows["dataset"] == dataset]["dim"].iloc[0])
+        bars = ax_t.barh(y, s["median"].fillna(0), color=[colour[x] for x in solvers],
+                         xerr=[(s["median"] - s["q1"]).fillna(0), (s["q3"] - s["median"]).fillna(0)],
+                         capsize=3, height=0.6)
+        for solver, bar in zip(solvers, bars):
+            bar.set_gid(f"time:{solver}")
+        ax_t.set_yticks(y, solvers, fontsize=8)
+        ax_t.invert_yaxis()
+        for k, (m, q3) in enumerate(zip(s["median"], s["q3"])):
+            if m == m:  # the median's value, right of the upper quartile's whisker
+                ax_t.text(max(m, q3), k, f"  {m:.3g} ms", va="center", ha="left", fontsize=7)
+        if scale == "log":
+            log_axis("x", ax_t)
+        else:
+            ax_t.set_xlim(left=0)
         ax_t.grid(True, which="both", axis="x", alpha=0.3)
-        ax_i.barh(y, stats["inliers"], color=[colour[s] for s in stats.index])
-        ax_i.set_yticks(list(y), [""] * len(stats))
-        truth = stats["true_inliers"].dropna()
+        name = os.path.basename(str(dataset).rstrip("/"))
+        n = rows[rows["dataset"] == dataset]["n"].iloc[0]
+        ax_t.set_title(f"{name}: n {n}, eps {params.get('eps')}, {int(s['trials'].max())} trials; "
+                       f"{accept_rule_text(params, dim)}", fontsize=8)
+        inl = ax_i.barh(y, s["inliers"].fillna(0), color=[colour[x] for x in solvers], height=0.6)
+        for solver, bar in zip(solvers, inl):
+            bar.set_gid(f"inliers:{solver}")
+        ax_i.set_yticks(y, [""] * len(solvers))
+        ax_i.invert_yaxis()
+        truth = s["true_inliers"].dropna()
         if len(truth):
-            ax_i.axvline(truth.iloc[0], color="k", linestyle="--", linewidth=0.8, label="true inliers")
-            ax_i.legend(fontsize=7)
-        for k, (_, s) in enumerate(stats.iterrows()):
-            if s["success"] == s["success"]:  # not NaN
-                ax_i.text(s["inliers"], k, f"  success {s['success']:.2f}", va="center", fontsize=7)
-        ax_i.set_xlabel("selected inliers (median)")
+            ax_i.axvline(truth.iloc[0], color="k", linestyle="--", linewidth=0.9,
+                         label=f"true inliers ({int(truth.iloc[0])})")
+        if params.get("accept_rule") == "count":
+            k = count_threshold(params, dim)
+            ax_i.axvline(k, color="tab:red", linestyle=":", linewidth=1.2,
+                         label=f"accept threshold K = {k}")
+        ax_i.set_xlim(0, right * 1.6)
+        for k, (_, st) in enumerate(s.iterrows()):
+            if st["trials"] != st["trials"]:  # a solver without rows on this dump
+                continue
+            text = f"accepted {int(st['accepted'])}/{int(st['trials'])}"
+            if st["success"] == st["success"]:  # not NaN
+                text += f", success {st['success']:.2f}"
+            ax_i.text(right, k, text, va="center", fontsize=7)
+        if ax_i.get_legend_handles_labels()[0]:
+            ax_i.legend(fontsize=7, loc="lower right", bbox_to_anchor=(1.0, 1.0), ncol=2,
+                        borderaxespad=0.2)
+        ax_i.grid(True, axis="x", alpha=0.3)
+        if r == len(datasets) - 1:
+            ax_t.set_xlabel("time per solve [ms] (bar: median, whiskers: quartiles)"
+                            + (", log scale" if scale == "log" else ""))
+            ax_i.set_xlabel("selected inliers (median)")
     fig.suptitle(report_io.success_criterion(reports[0]), fontsize=9)
     fig.tight_layout()
-    return save(fig, out_dir, stem, "dump")
+    return fig
 
 
-def plot_dimacs(reports, out_dir, stem):
+def plot_dumps(reports, out_dir, stem):
+    return save_figure(build_dump(reports), os.path.join(out_dir, f"{stem}_dump"))
+
+
+# ---------------------------------------------------------------------------------------------
+# DIMACS
+
+def build_dimacs(reports):
     import pandas as pd
     rows = pd.concat([report_io.results_frame(d) for d in reports], ignore_index=True)
     if rows.empty:
@@ -207,25 +415,35 @@ def plot_dimacs(reports, out_dir, stem):
     algorithms = sorted(rows["algorithm"].unique())
     colour = colours(algorithms)
     width = 0.8 / len(algorithms)
-    fig, ax = plt.subplots(figsize=(max(8, 0.6 * len(graphs) * max(1, len(algorithms) / 2)), 5))
+    scale = time_scale([max(t, 1e-3) for t in rows["time_ms"]])
+    fig, ax = plt.subplots(figsize=(max(PANEL_W + 2.5, 0.6 * len(graphs) * max(1, len(algorithms) / 2)),
+                                    PANEL_H + 1.2))
     for k, algorithm in enumerate(algorithms):
         g = rows[rows["algorithm"] == algorithm].set_index("graph_name")
         for i, graph in enumerate(graphs):
             if graph not in g.index:
                 continue
             r = g.loc[[graph]].iloc[0]
-            ax.bar(i + (k - (len(algorithms) - 1) / 2) * width, max(r["time_ms"], 1e-3), width,
-                   color=colour[algorithm], hatch=None if r["status"] == "ok" else "//",
-                   edgecolor="k" if r["status"] != "ok" else None, linewidth=0.4,
-                   label=algorithm if i == 0 else None)
+            bar = ax.bar(i + (k - (len(algorithms) - 1) / 2) * width, max(r["time_ms"], 1e-3), width,
+                         color=colour[algorithm], hatch=None if r["status"] == "ok" else "//",
+                         edgecolor="k" if r["status"] != "ok" else None, linewidth=0.4,
+                         label=algorithm if i == 0 else None)
+            bar.patches[0].set_gid(f"dimacs:{algorithm}:{graph}")
     ax.set_xticks(range(len(graphs)), graphs, rotation=60, ha="right", fontsize=8)
-    ax.set_ylabel("search time [ms] (hatched: not proven optimal)")
-    log_axis(ax)
+    ax.set_ylabel("search time [ms] (hatched: not proven optimal)"
+                  + (", log scale" if scale == "log" else ""))
+    if scale == "log":
+        log_axis("y", ax)
+    ax.grid(True, which="both", axis="y", alpha=0.3)
     limit = reports[0].get("parameters", {}).get("time_limit_s")
     ax.set_title(f"maximum clique on DIMACS graphs, time limit {limit} s", fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    return save(fig, out_dir, stem, "dimacs")
+    return fig
+
+
+def plot_dimacs(reports, out_dir, stem):
+    return save_figure(build_dimacs(reports), os.path.join(out_dir, f"{stem}_dimacs"))
 
 
 def main():

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # ctest: reports made by the CLI through the report scripts. Sweeps give success and time plots
 # (PNG and PDF), a DIMACS report its own plot, two generators two panels; the tables hold the
-# rows; malformed input is one line naming the file, never a traceback.
+# rows; malformed input is one line naming the file, never a traceback. Here only the files'
+# headers are checked: what the figures draw (curves against the reports' data, panels, titles,
+# operating points, pixels) is tested in tests/plots (ctest plot_figures).
 set -euo pipefail
 src=$1 out=$2
 py=/usr/bin/python3
