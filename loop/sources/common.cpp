@@ -158,4 +158,14 @@ Cloud FileSequence::points(int i) const {
   return read_(files_[static_cast<std::size_t>(i)]);
 }
 
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  for (std::istringstream row(line); std::getline(row, field, ',');) {
+    const auto a = field.find_first_not_of(" \t\r"), b = field.find_last_not_of(" \t\r");
+    fields.push_back(a == std::string::npos ? "" : field.substr(a, b - a + 1));
+  }
+  return fields;
+}
+
 }  // namespace verifybench::sources

@@ -45,6 +45,9 @@ void keep_scans_with_pose(SequenceInfo& info, std::vector<std::string>& files,
                           const std::vector<int>& pose_index, const Trajectory& poses,
                           const std::string& why);
 
+/// The comma-separated fields of a CSV line, each trimmed of blanks (MulRan's and NCLT's poses).
+std::vector<std::string> csv_fields(const std::string& line);
+
 /// InputError "PATH: no such folder (WHAT)" / "... file" unless it exists.
 void require_dir(const std::string& path, const std::string& what);
 void require_file(const std::string& path, const std::string& what);

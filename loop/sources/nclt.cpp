@@ -67,12 +67,7 @@ StampedTrajectory read_ground_truth(const std::string& path) {
   for (std::string line; std::getline(in, line);) {
     ++line_no;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    std::vector<std::string> fields;
-    std::string field;
-    for (std::istringstream row(line); std::getline(row, field, ',');) {
-      const auto a = field.find_first_not_of(" \t\r"), b = field.find_last_not_of(" \t\r");
-      fields.push_back(a == std::string::npos ? "" : field.substr(a, b - a + 1));
-    }
+    const std::vector<std::string> fields = csv_fields(line);
     if (fields.size() != 7) {
       input_error(path, line_no,
                   std::to_string(fields.size()) +
