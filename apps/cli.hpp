@@ -18,12 +18,13 @@ namespace verifybench::cli {
 /// --solvers, the common solver options, every family's options (one help group each), success
 /// criteria, --seed, --out, --quiet.
 struct SolverOptionDefaults {
-  std::string eps = "0.1";
+  SolverParams params;  ///< the defaults --help shows and the options start from
   std::string out_value = "FILE.json";
   std::string out_help = "report path (required; written atomically)";
 };
 void add_solver_options(Options& o, const SolverOptionDefaults& defaults = {});
-SolverParams solver_params(const Options& o);
+/// The rows (solvers/params.hpp) read onto `defaults` (the same as add_solver_options'), --seed.
+SolverParams solver_params(const Options& o, const SolverParams& defaults = {});
 SuccessCriteria criteria(const Options& o);
 /// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
 std::vector<std::string> solver_names(const Options& o);
@@ -73,6 +74,7 @@ int cmd_list(const std::vector<std::string>& args);
 int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv);
+int cmd_graph(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_extract(const std::vector<std::string>& args);
 int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string>& argv);
 int cmd_merge(const std::vector<std::string>& args, const std::vector<std::string>& argv);

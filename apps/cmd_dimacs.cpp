@@ -7,19 +7,26 @@
 #include "cliques/max_clique.hpp"
 #include "datasets/dimacs.hpp"
 #include "harness/harness.hpp"
+#include "apps/param_options.hpp"
 #include "harness/progress.hpp"
 
 namespace verifybench {
 
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
   Options o;
+  // The solvers' rows of the time budget, threads and graph cap (solvers/params.cpp): one search
+  // a graph is one "pair".
+  std::vector<ParamField> budget_rows;
+  for (const ParamField& f : common_param_family().fields) {
+    if (f.option == "time-limit" || f.option == "threads" || f.option == "max-graph-mb") {
+      budget_rows.push_back(f);
+    }
+  }
   o.allow_positional("FILE.clq")
       .add("algorithms", "A,B", kDefaultCliqueAlgorithm,
-           "clique algorithms (see `verifybench list`)")
-      .add("time-limit", "S", "60", "per-search time limit [s]")
-      .add("threads", "T", "1", "threads of the parallel algorithms (bbmc-dec; 0 = all cores)")
-      .add("seed", "S", "1", "seed of the randomised algorithms (bbmcx-ls; recorded in the report)")
-      .add("max-graph-mb", "MB", "4096", "refuse graphs larger than this")
+           "clique algorithms (see `verifybench list`)");
+  cli::add_rows(o, budget_rows, SolverParams{});
+  o.add("seed", "S", "1", "seed of the randomised algorithms (bbmcx-ls; recorded in the report)")
       .add("out", "FILE.json", "", "report path (required; written atomically)")
       .add("quiet", "", "", "no progress lines");
   cli::add_shard_option(o);
@@ -31,12 +38,13 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   if (o.positional().empty()) throw UsageError("no DIMACS file given");
   const auto names = o.list("algorithms");
   for (const auto& n : names) CliqueAlgorithms::get(n);  // throws with the known names
+  SolverParams solver;
+  cli::read_rows(o, budget_rows, solver);
   CliqueSearchParams params;
-  params.time_limit_s = o.real("time-limit", 1e-6, 1e9);
-  params.threads = static_cast<int>(o.integer("threads", 0, 1024));
+  params.time_limit_s = solver.time_limit_s;
+  params.threads = solver.threads;
   params.seed = o.seed("seed");
-  const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30))
-                                << 20;
+  const std::size_t max_bytes = solver.max_graph_bytes;
   const Shard shard = cli::shard(o);  // one unit per file
   const long long units = static_cast<long long>(o.positional().size());
   const std::string out = cli::report_path(o);

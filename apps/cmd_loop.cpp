@@ -25,6 +25,13 @@ std::string source_names() {
   return names;
 }
 
+/// The paper's outdoor setting: eps 1 m (its maps are 100 m at 0.5 m voxels).
+SolverParams loop_solver_defaults() {
+  SolverParams p;
+  p.eps = 1.0;
+  return p;
+}
+
 void add_loop_options(Options& o) {
   o.group("sequence")
       .add("trajectory", "FILE", "",
@@ -94,7 +101,8 @@ void add_loop_options(Options& o) {
   o.group("front end of each local map (the same options as `verifybench extract`; --max-hamming "
           "and --max-feature-distance also bound retrieval's votes)");
   cli::add_rows(o, frontend_param_rows(), loop_extract_defaults());
-  cli::add_solver_options(o, {"1", "DIR", "report folder: loop.json and loop.md (required)"});
+  cli::add_solver_options(o, {loop_solver_defaults(), "DIR",
+                             "report folder: loop.json and loop.md (required)"});
 }
 
 /// A poses file's poses, one per scan: by nearest stamp (within 0.05 s) where the file has stamps
@@ -249,7 +257,7 @@ LoopConfig loop_config(const Options& o) {
   c.dense.icp.max_correspondence = o.real("dense-icp-distance", 1e-3, 1e3);
   c.loop_sigma_rot_deg = o.real("loop-sigma-rot-deg", 1e-6, 180.0);
   c.solvers = cli::solver_names(o);
-  c.params = cli::solver_params(o);
+  c.params = cli::solver_params(o, loop_solver_defaults());
   c.seed = c.params.seed;
   c.threads = c.params.threads;
   c.params.threads = 1;  // maps are built in parallel; each solve on one thread

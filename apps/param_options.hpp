@@ -17,7 +17,11 @@ void add_rows(Options& o, const std::vector<ParamRow<P>>& rows, const P& default
   for (const auto& r : rows) {
     const bool flag = r.kind == Kind::flag;
     std::string help = r.help;
-    if (!r.range().empty()) help += ", in " + r.range();
+    if (!r.expected.empty()) {
+      help += ": " + r.expected;
+    } else if (!r.range().empty()) {
+      help += ", in " + r.range();
+    }
     o.add(r.option, flag ? "" : r.value_name, flag ? "" : r.text(defaults), help);
   }
 }
@@ -27,7 +31,10 @@ template <class P>
 void read_rows(const Options& o, const std::vector<ParamRow<P>>& rows, P& p) {
   using Kind = typename ParamRow<P>::Kind;
   for (const auto& r : rows) {
-    if (!o.given(r.option)) continue;
+    if (!o.given(r.option)) {
+      if (r.when_absent) r.when_absent(p);
+      continue;
+    }
     switch (r.kind) {
       case Kind::flag:
         r.set(p, 1.0);
@@ -68,10 +75,10 @@ nlohmann::json rows_json(const std::vector<ParamRow<P>>& rows, const P& p) {
         j[r.key] = r.get(p) != 0.0;
         break;
       case Kind::integer:
-        j[r.key] = static_cast<long long>(r.get(p));
+        j[r.key] = static_cast<long long>(r.report ? r.report(p) : r.get(p));
         break;
       case Kind::real: {
-        const double v = r.get(p);
+        const double v = r.report ? r.report(p) : r.get(p);
         j[r.key] = std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
         break;
       }

@@ -17,23 +17,39 @@ namespace verifybench {
 template <class P>
 struct ParamRow {
   enum class Kind { real, integer, flag, text };
-  std::string option;      ///< CLI option without the dashes: "iss-salient-radius"
+  std::string option;      ///< CLI option without the dashes: "iss-salient-radius"; with '-' as
+                           ///< '_' the Python keyword
   std::string key;         ///< report key: "iss_salient_radius_m"
   std::string value_name;  ///< shown in --help ("M"); empty for a flag
   std::string help;
   Kind kind = Kind::real;
   double min = 0.0, max = 0.0;  ///< inclusive range of a real or integer
-  bool infinite_ok = false;     ///< real: "inf" stands for no limit
+  std::string expected;         ///< the range in words for messages ("an integer >= 1"); optional
   /// real, integer, flag (0 / 1): the value in P, and its setter.
   std::function<double(const P&)> get;
   std::function<void(P&, double)> set;
+  /// The value the report records, when it is not get's (a size in MB reported in bytes).
+  std::function<double(const P&)> report;
+  bool infinite_ok = false;  ///< real: "inf" stands for no limit
   /// text: the value in P, and a setter that throws std::invalid_argument for a bad text.
   std::function<std::string(const P&)> get_text;
   std::function<void(P&, const std::string&)> set_text;
+  /// When the option is not given: derive the value from the others (inlier threshold = eps).
+  std::function<void(P&)> when_absent;
+  std::string default_note;  ///< --help's default in words where it is derived ("eps")
 
+  /// The Python keyword: the option with '-' as '_'.
+  std::string keyword() const {
+    std::string k = option;
+    for (char& c : k) {
+      if (c == '-') c = '_';
+    }
+    return k;
+  }
   /// The value of `p` as text ("0.5", "1000", "inf", "nearest"; "" for an unset flag); a real row
   /// whose one option sets two fields may show both through get_text ("0.5; fpfh 0.3").
   std::string text(const P& p) const {
+    if (!default_note.empty()) return default_note;
     if (get_text) return get_text(p);
     const double v = get(p);
     if (kind == Kind::flag) return v != 0.0 ? "on" : "";

@@ -21,15 +21,111 @@ const std::vector<ParamFamily>& param_families() {
 }
 
 std::string default_text(const ParamField& f) {
-  if (f.kind == ParamField::Kind::flag) return "";
-  std::ostringstream out;
-  const double v = f.get(SolverParams{});
-  if (f.kind == ParamField::Kind::integer) {
-    out << static_cast<long long>(v);
-  } else {
-    out << v;
+  return f.kind == ParamField::Kind::flag ? "" : f.text(SolverParams{});
+}
+
+namespace {
+
+ParamField number(std::string option, std::string key, std::string value_name, std::string help,
+                  ParamField::Kind kind, double min, double max, std::string expected) {
+  ParamField f;
+  f.option = std::move(option);
+  f.key = std::move(key);
+  f.value_name = std::move(value_name);
+  f.help = std::move(help);
+  f.kind = kind;
+  f.min = min;
+  f.max = max;
+  f.expected = std::move(expected);
+  return f;
+}
+
+ParamFamily make_common_family() {
+  using K = ParamField::Kind;
+  ParamFamily family{"common", "solvers", {}};
+  auto& rows = family.fields;
+  rows.push_back(param_row(&SolverParams::eps,
+                           number("eps", "eps", "M",
+                                  "pair length tolerance of the correspondence graph, Eq. (1) [m]",
+                                  K::real, 1e-12, 1e12, "a finite value > 0")));
+  ParamField inlier = param_row(&SolverParams::inlier_threshold,
+                                number("inlier-threshold", "inlier_threshold", "M",
+                                       "consensus residual threshold [m]", K::real, 1e-12, 1e12,
+                                       "a finite value > 0"));
+  inlier.when_absent = [](SolverParams& p) { p.inlier_threshold = p.eps; };
+  inlier.default_note = "eps";
+  rows.push_back(inlier);
+  ParamField accept = number("accept", "accept_rule", "RULE",
+                             "accept rule: pvalue (p < alpha against a permutation null of the pair) "
+                             "or count (inliers >= --min-inliers, the paper's rule)",
+                             K::text, 0, 0, "pvalue or count");
+  accept.get_text = [](const SolverParams& p) { return std::string(to_string(p.accept.rule)); };
+  accept.set_text = [](SolverParams& p, const std::string& v) {
+    p.accept.rule = parse_accept_rule(v);
+  };
+  rows.push_back(accept);
+  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::alpha,
+                           number("alpha", "alpha", "A", "pvalue rule: accept when p < A", K::real,
+                                  1e-300, 0.999999, "a value in (0, 1)")));
+  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::null_draws,
+                           number("null-draws", "null_draws", "K",
+                                  "pvalue rule: permuted sets the null is fitted on (each one more "
+                                  "solve)",
+                                  K::integer, 2, 100000, "an integer >= 2")));
+  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::max_null_draws,
+                           number("max-null-draws", "max_null_draws", "K",
+                                  "pvalue rule: where the range of p after --null-draws draws still "
+                                  "holds alpha, draw on until it does not or K draws ran in all "
+                                  "(<= --null-draws: never)",
+                                  K::integer, 0, 100000, "an integer >= 0")));
+  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::prior_gate,
+                           number("prior-gate", "prior_gate", "C",
+                                  "pvalue rule, sets with a pose prior: accept only motions inside "
+                                  "the prior's chi-square gate at confidence C (0 = no gate)",
+                                  K::real, 0.0, 0.999999999, "a value in [0, 1) (0 = no gate)")));
+  rows.push_back(param_row(&SolverParams::min_inliers,
+                           number("min-inliers", "min_inliers", "K",
+                                  "count rule: accept when inliers >= K; 0 = paper default (5 in "
+                                  "3D, 10 in 2D)",
+                                  K::integer, 0, 1 << 30, "an integer >= 0 (0 = paper default)")));
+  rows.push_back(param_row(&SolverParams::time_limit_s,
+                           number("time-limit", "time_limit_s", "S",
+                                  "the pair's time budget [s]: the solve, then the pvalue rule's "
+                                  "null solves share what is left (a decision the budget cut short "
+                                  "is marked provisional); best-so-far past it",
+                                  K::real, 1e-6, 1e9, "a value > 0")));
+  ParamField graph_mb = number("max-graph-mb", "max_graph_bytes", "MB",
+                               "refuse correspondence graphs larger than this", K::integer, 1,
+                               1LL << 30, "an integer >= 1");
+  graph_mb.get = [](const SolverParams& p) {
+    return static_cast<double>(p.max_graph_bytes >> 20);
+  };
+  graph_mb.set = [](SolverParams& p, double v) {
+    p.max_graph_bytes = static_cast<std::size_t>(v) << 20;
+  };
+  graph_mb.report = [](const SolverParams& p) { return static_cast<double>(p.max_graph_bytes); };
+  rows.push_back(graph_mb);
+  rows.push_back(param_row(&SolverParams::threads,
+                           number("threads", "threads", "T",
+                                  "threads for graph construction, clique-bbmc-dec and the pvalue "
+                                  "rule's null solves (0 = all cores); results do not depend on it",
+                                  K::integer, 0, 1024, "an integer >= 0 (0 = all cores)")));
+  return family;
+}
+
+}  // namespace
+
+const ParamFamily& common_param_family() {
+  static const ParamFamily family = make_common_family();
+  return family;
+}
+
+std::vector<ParamField> solver_param_rows() {
+  std::vector<ParamField> rows = common_param_family().fields;
+  for (const ParamFamily& family : param_families()) {
+    rows.insert(rows.end(), family.fields.begin(), family.fields.end());
   }
-  return out.str();
+  return rows;
 }
 
 namespace {
@@ -68,7 +164,7 @@ void SolverParams::validate() const {
   require(threads >= 0, "threads", threads, "an integer >= 0 (0 = all cores)");
   for (const ParamFamily& family : param_families()) {
     for (const ParamField& f : family.fields) {
-      if (f.kind == ParamField::Kind::flag) continue;
+      if (f.kind == ParamField::Kind::flag || f.kind == ParamField::Kind::text) continue;
       const double v = f.get(*this);
       require(std::isfinite(v) && v >= f.min && v <= f.max, f.key, v, f.expected);
     }

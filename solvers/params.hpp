@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/param_rows.hpp"
+
 namespace verifybench {
 
 struct RansacParams {
@@ -96,21 +98,9 @@ struct SolverParams {
   double jcbb_point_sigma() const { return jcbb.sigma > 0.0 ? jcbb.sigma : inlier_threshold / 3.0; }
 };
 
-/// One tunable field of a solver family.
-struct ParamField {
-  enum class Kind { real, integer, flag };
-  std::string option;      ///< CLI option without the dashes: "ransac-iterations"
-  std::string key;         ///< report key and the name in messages: "ransac_iterations"
-  std::string value_name;  ///< shown in --help ("K"); empty for a flag
-  std::string help;
-  Kind kind = Kind::real;
-  double min = 0.0, max = 0.0;  ///< inclusive range of a real or integer
-  std::string expected;         ///< the range in words, for messages: "an integer >= 1"
-  std::function<double(const SolverParams&)> get;
-  std::function<void(SolverParams&, double)> set;
-  /// The value the report records (e.g. jcbb_sigma's effective sigma); get when empty.
-  std::function<double(const SolverParams&)> report;
-};
+/// One setting of the solvers as a row (core/param_rows.hpp): its CLI option, report key, Python
+/// keyword, range, help and default (a default SolverParams' value) in one place.
+using ParamField = ParamRow<SolverParams>;
 
 struct ParamFamily {
   std::string name;   ///< "ransac"
@@ -127,8 +117,13 @@ ParamField bind(Family SolverParams::*family, T Family::*member, ParamField f) {
   return f;
 }
 
-/// Every family, in --help order (ransac, mac, jcbb, gnc, teaser, sc2).
+/// The settings every solver shares (eps, inlier threshold, the accept rule and its level, null
+/// draws, prior gate, min inliers, the pair's time budget, the graph cap, threads), declared once
+/// in params.cpp; then every family, in --help order (ransac, mac, jcbb, gnc, teaser, sc2).
+const ParamFamily& common_param_family();
 const std::vector<ParamFamily>& param_families();
+/// The common rows, then every family's: what the CLI, the report and Python's solve() take.
+std::vector<ParamField> solver_param_rows();
 
 /// The default of a field as --help shows it ("10000", "0.999"; "" for a flag).
 std::string default_text(const ParamField& f);

@@ -12,11 +12,11 @@ build/python on PYTHONPATH, or install the package (`cmake --install build`, or
 """
 import json
 
-from ._core import (InputError, __version__, generators, git_commit, read_dump, solve,  # noqa: F401
-                    solvers, synthetic)
+from ._core import (InputError, __version__, generators, git_commit, read_dump,  # noqa: F401
+                    settings, solve, solvers, synthetic)
 
 __all__ = ["InputError", "__version__", "generators", "git_commit", "load_report", "read_dump",
-           "solve", "solvers", "synthetic"]
+           "settings", "solve", "solvers", "synthetic"]
 
 
 def load_report(path, table="results"):

@@ -3,7 +3,7 @@ from typing import Any
 import pandas
 
 from ._core import (InputError as InputError, __version__ as __version__, generators as generators,
-                    git_commit as git_commit, read_dump as read_dump, solve as solve,
-                    solvers as solvers, synthetic as synthetic)
+                    git_commit as git_commit, read_dump as read_dump, settings as settings,
+                    solve as solve, solvers as solvers, synthetic as synthetic)
 
 def load_report(path: str, table: str = "results") -> pandas.DataFrame: ...

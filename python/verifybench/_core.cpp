@@ -7,7 +7,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
+#include <limits>
+#include <sstream>
+#include <vector>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -174,28 +178,134 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   return out;
 }
 
-py::dict solve(const std::string& name, const Array& src, const Array& dst, double eps,
-               std::optional<double> inlier_threshold, int min_inliers, double time_limit,
-               std::uint64_t seed, int threads, const std::string& accept, double alpha,
-               int null_draws, int max_null_draws, double prior_gate,
+/// Edit distance, for "did you mean" on an unknown keyword.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1u : 0u)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The solver settings given as keywords, read by the same rows as the CLI's options
+/// (solvers/params.hpp), onto a default SolverParams: the defaults are the CLI's.
+vb::SolverParams settings_from(const py::kwargs& given) {
+  const std::vector<vb::ParamField> rows = vb::solver_param_rows();
+  vb::SolverParams p;
+  std::vector<bool> seen(rows.size(), false);
+  for (const auto& item : given) {
+    const std::string key = py::str(item.first);
+    std::size_t k = 0;
+    while (k < rows.size() && rows[k].keyword() != key) ++k;
+    if (k == rows.size()) {
+      std::string best;
+      std::size_t best_d = 4;
+      for (const auto& r : rows) {
+        const std::size_t d = edit_distance(key, r.keyword());
+        if (d < best_d) best_d = d, best = r.keyword();
+      }
+      throw py::type_error("solve(): unknown setting '" + key + "'" +
+                           (best.empty() ? "" : " (did you mean '" + best + "'?)") +
+                           "; verifybench.settings() lists them");
+    }
+    seen[k] = true;
+    const vb::ParamField& r = rows[k];
+    const py::handle v = item.second;
+    using K = vb::ParamField::Kind;
+    auto out_of_range = [&](double x) {
+      std::ostringstream msg;
+      msg << key << " = " << x << " is invalid; expected "
+          << (r.expected.empty() ? "a value in " + r.range() : r.expected);
+      throw std::invalid_argument(msg.str());
+    };
+    switch (r.kind) {
+      case K::text:
+        if (!py::isinstance<py::str>(v)) throw py::type_error(key + " must be a str");
+        try {
+          r.set_text(p, v.cast<std::string>());
+        } catch (const std::invalid_argument& e) {
+          throw std::invalid_argument(key + ": " + e.what());
+        }
+        break;
+      case K::flag:
+        if (!py::isinstance<py::bool_>(v)) throw py::type_error(key + " must be a bool");
+        r.set(p, v.cast<bool>() ? 1.0 : 0.0);
+        break;
+      case K::integer: {
+        if (py::isinstance<py::bool_>(v) || !py::isinstance<py::int_>(v)) {
+          throw py::type_error(key + " must be an int");
+        }
+        const double x = static_cast<double>(v.cast<long long>());
+        if (x < r.min || x > r.max) out_of_range(x);
+        r.set(p, x);
+        break;
+      }
+      case K::real: {
+        if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v))) {
+          throw py::type_error(key + " must be a number");
+        }
+        const double x = v.cast<double>();
+        const bool infinite = r.infinite_ok && x == std::numeric_limits<double>::infinity();
+        if (!infinite && !(std::isfinite(x) && x >= r.min && x <= r.max)) out_of_range(x);
+        r.set(p, x);
+        break;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (!seen[k] && rows[k].when_absent) rows[k].when_absent(p);
+  }
+  return p;
+}
+
+py::dict solve(const std::string& name, const Array& src, const Array& dst,
                const std::optional<Array>& scores, const std::optional<Array>& prior_T,
-               const std::optional<Array>& prior_cov) {
+               const std::optional<Array>& prior_cov, std::uint64_t seed,
+               const py::kwargs& settings) {
   const int dim = dimension_of(src, dst);
-  vb::SolverParams params;
-  params.eps = eps;
-  params.inlier_threshold = inlier_threshold ? *inlier_threshold : eps;
-  params.min_inliers = min_inliers;
-  params.time_limit_s = time_limit;
+  vb::SolverParams params = settings_from(settings);
   params.seed = seed;
-  params.threads = threads;
-  params.accept.rule = vb::parse_accept_rule(accept);
-  params.accept.alpha = alpha;
-  params.accept.null_draws = null_draws;
-  params.accept.max_null_draws = max_null_draws;
-  params.accept.prior_gate = prior_gate;
   params.validate();
   return dim == 2 ? solve_dim<2>(name, src, dst, scores, prior_T, prior_cov, params)
                   : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, params);
+}
+
+/// Every setting solve() takes: its keyword, CLI option, report key, kind, default, range, help.
+py::list settings_list() {
+  py::list out;
+  const vb::SolverParams defaults;
+  for (const vb::ParamField& r : vb::solver_param_rows()) {
+    py::dict d;
+    using K = vb::ParamField::Kind;
+    d["keyword"] = r.keyword();
+    d["option"] = "--" + r.option;
+    d["key"] = r.key;
+    d["kind"] = r.kind == K::real ? "real" : r.kind == K::integer ? "integer"
+                : r.kind == K::flag ? "flag" : "text";
+    if (!r.default_note.empty()) {
+      d["default"] = r.default_note;
+    } else if (r.kind == K::text) {
+      d["default"] = r.get_text(defaults);
+    } else if (r.kind == K::flag) {
+      d["default"] = r.get(defaults) != 0.0;
+    } else if (r.kind == K::integer) {
+      d["default"] = static_cast<long long>(r.get(defaults));
+    } else {
+      d["default"] = r.get(defaults);
+    }
+    d["min"] = r.kind == K::real || r.kind == K::integer ? py::object(py::float_(r.min)) : py::object(py::none());
+    d["max"] = r.kind == K::real || r.kind == K::integer ? py::object(py::float_(r.max)) : py::object(py::none());
+    d["help"] = r.help;
+    out.append(d);
+  }
+  return out;
 }
 
 template <int Dim>
@@ -263,19 +373,20 @@ PYBIND11_MODULE(_core, m) {
     return names;
   }, "Names of the synthetic generator kinds.");
   m.def("solve", &solve, py::arg("solver"), py::arg("src"), py::arg("dst"), py::kw_only(),
-        py::arg("eps") = 0.1, py::arg("inlier_threshold") = py::none(), py::arg("min_inliers") = 0,
-        py::arg("time_limit") = 60.0, py::arg("seed") = 1, py::arg("threads") = 1,
-        py::arg("accept") = "count", py::arg("alpha") = 0.001, py::arg("null_draws") = 20,
-        py::arg("max_null_draws") = 100, py::arg("prior_gate") = 0.999,
         py::arg("scores") = py::none(), py::arg("prior_T") = py::none(),
-        py::arg("prior_cov") = py::none(),
+        py::arg("prior_cov") = py::none(), py::arg("seed") = 1,
         "Runs one registered solver on correspondences src[i] -> dst[i] ((n, 2) or (n, 3) arrays).\n"
+        "Every solver setting of the CLI is a keyword (the option with '-' as '_': eps,\n"
+        "inlier_threshold, accept, alpha, time_limit, ransac_iterations, ...; settings() lists\n"
+        "them with their defaults, which are the CLI's: accept='pvalue').\n"
         "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
-        "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value.\n"
-        "accept='count' (the paper's rule, min_inliers; 0 = 5 in 3D, 10 in 2D) or 'pvalue'.\n"
-        "prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1) guess and the 3 x 3 / 6 x 6\n"
-        "covariance of its left perturbation), both or neither; under 'pvalue' a motion outside its\n"
-        "chi-square gate at prior_gate is not accepted; prior_d2 is the fitted motion's d^2.");
+        "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value,\n"
+        "provisional. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1) guess and the\n"
+        "3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under 'pvalue' a\n"
+        "motion outside its chi-square gate at prior_gate is not accepted.");
+  m.def("settings", &settings_list,
+        "Every setting solve() takes, as the CLI declares it: keyword, option, key, kind, default, "
+        "min, max, help.");
   m.def("synthetic", &synthetic, py::kw_only(), py::arg("n") = 500, py::arg("outliers") = 0.5,
         py::arg("noise") = 0.01, py::arg("dim") = 3, py::arg("seed") = 1,
         py::arg("kind") = "uniform", py::arg("extent") = 10.0, py::arg("negative") = false,

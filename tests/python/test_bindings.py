@@ -86,7 +86,7 @@ def test_calibrated_rule_accepts_a_loop_and_rejects_a_negative():
     b = vb.solve("clique", neg["src"], neg["dst"], eps=0.5, accept="pvalue")
     assert a["accepted"] and a["p_value"] < 0.001
     assert not b["accepted"] and b["p_value"] >= 0.001
-    count = vb.solve("clique", neg["src"], neg["dst"], eps=0.5)  # the paper's count rule
+    count = vb.solve("clique", neg["src"], neg["dst"], eps=0.5, accept="count")  # the paper's rule
     assert count["accepted"] and len(count["inliers"]) >= 5 and count["p_value"] is None
     assert count["p_value_range"] is None
     for r in (a, b):
@@ -121,7 +121,8 @@ def test_pose_prior_gates_the_calibrated_rule():
     assert not b["accepted"] and b["p_value"] < 0.001 and b["prior_d2"] > 400
     assert vb.solve("clique", s["src"], s["dst"], eps=0.1, accept="pvalue", prior_T=far,
                     prior_cov=cov, prior_gate=0.0)["accepted"]
-    assert vb.solve("clique", s["src"], s["dst"], eps=0.1, prior_T=far, prior_cov=cov)["accepted"]
+    assert vb.solve("clique", s["src"], s["dst"], eps=0.1, accept="count", prior_T=far,
+                    prior_cov=cov)["accepted"]
     assert vb.solve("clique", s["src"], s["dst"], eps=0.1)["prior_d2"] is None
     with pytest.raises(ValueError, match="come together"):
         vb.solve("clique", s["src"], s["dst"], prior_T=far)
@@ -188,3 +189,54 @@ def test_dump_and_report_readers(tmp_path):
     (tmp_path / "x.json").write_text('{"hello": 1}')
     with pytest.raises(vb.InputError, match="schema_version"):
         vb.load_report(str(tmp_path / "x.json"))
+
+
+def cli_defaults():
+    """Each option's default as `verifybench sweep --help` prints it: {"--eps": "0.1", ...}."""
+    cli = os.environ.get("VERIFYBENCH_CLI")
+    if not cli:
+        pytest.skip("VERIFYBENCH_CLI is not set")
+    text = subprocess.run([cli, "sweep", "--help"], check=True, capture_output=True, text=True).stdout
+    out = {}
+    for line in text.splitlines():
+        words = line.split()
+        if not words or not words[0].startswith("--"):
+            continue
+        out[words[0]] = line[line.rfind("(default ") + 9:-1] if line.endswith(")") and "(default " in line else ""
+    return out
+
+
+def test_every_setting_defaults_to_the_clis_and_reaches_solve():
+    rows = vb.settings()
+    defaults = cli_defaults()
+    assert {r["keyword"] for r in rows} >= {"eps", "inlier_threshold", "accept", "alpha", "time_limit",
+                                            "ransac_iterations", "mac_max_cliques", "jcbb_sigma",
+                                            "gnc_max_iterations", "sc2_k1", "teaser_inlier_selection"}
+    for r in rows:
+        assert r["option"] in defaults, r["option"]
+        shown = defaults[r["option"]]
+        if r["kind"] == "flag":
+            assert r["default"] is False and shown == "", r
+        elif r["kind"] in ("text",) or isinstance(r["default"], str):
+            assert shown == r["default"], r
+        else:
+            assert float(shown) == pytest.approx(float(r["default"]), rel=1e-5), r
+    s = vb.synthetic(n=200, outliers=0.5, seed=3)
+    # The CLI's default rule, and a family setting that used to raise a TypeError.
+    r = vb.solve("ransac", s["src"], s["dst"], ransac_iterations=1000, seed=5)
+    assert r["accept_rule"] == "pvalue"
+    assert r["iterations"] == 1000
+    c = vb.solve("clique", s["src"], s["dst"], accept="count", min_inliers=10**6)
+    assert not c["accepted"] and c["accept_rule"] == "count"
+
+
+def test_unknown_or_bad_settings_are_named_without_the_arrays():
+    s = vb.synthetic(n=2000, outliers=0.5, seed=1)
+    with pytest.raises(TypeError) as e:
+        vb.solve("ransac", s["src"], s["dst"], ransac_iteration=10)
+    assert "ransac_iteration" in str(e.value) and "ransac_iterations" in str(e.value)
+    assert len(str(e.value)) < 300
+    with pytest.raises(ValueError, match="ransac_iterations"):
+        vb.solve("ransac", s["src"], s["dst"], ransac_iterations=0)
+    with pytest.raises(TypeError, match="eps must be a number"):
+        vb.solve("clique", s["src"], s["dst"], eps="big")
