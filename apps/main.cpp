@@ -23,6 +23,8 @@ const Command kCommands[] = {
     {"run", "solvers on a correspondence dump (DIR/dump.json + matches.tsv, or DIR/corr.txt)",
      vb::cmd_run},
     {"dimacs", "maximum clique algorithms on DIMACS graphs (FILE.clq ...)", vb::cmd_dimacs},
+    {"graph", "the correspondence graph of Eq. (1) of a dump, as a DIMACS file (for other solvers)",
+     vb::cmd_graph},
     {"extract", "a correspondence dump from two scans (ISS + B-SHOT, or BEV + ORB; HBST matching)",
      [](const auto& args, const auto&) { return vb::cmd_extract(args); }},
     {"loop", "loop closure on a sequence: local maps, retrieval, solvers, P/R/F1, pose graph, APE",
