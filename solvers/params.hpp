@@ -108,10 +108,31 @@ struct ParamFamily {
   std::vector<ParamField> fields;
 };
 
+/// The positional form a family declares a row in (the first fields of ParamField, in order).
+struct ParamSpec {
+  std::string option, key, value_name, help;
+  ParamField::Kind kind = ParamField::Kind::real;
+  double min = 0.0, max = 0.0;
+  std::string expected;
+  std::function<double(const SolverParams&)> get;
+  std::function<void(SolverParams&, double)> set;
+  std::function<double(const SolverParams&)> report;
+};
+
 /// Binds a field to `params.*family.*member`; the default shown in --help is the member's value in
 /// a default SolverParams.
 template <class Family, class T>
-ParamField bind(Family SolverParams::*family, T Family::*member, ParamField f) {
+ParamField bind(Family SolverParams::*family, T Family::*member, const ParamSpec& spec) {
+  ParamField f;
+  f.option = spec.option;
+  f.key = spec.key;
+  f.value_name = spec.value_name;
+  f.help = spec.help;
+  f.kind = spec.kind;
+  f.min = spec.min;
+  f.max = spec.max;
+  f.expected = spec.expected;
+  f.report = spec.report;
   f.get = [=](const SolverParams& p) { return static_cast<double>(p.*family.*member); };
   f.set = [=](SolverParams& p, double v) { p.*family.*member = static_cast<T>(v); };
   return f;
