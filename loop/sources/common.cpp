@@ -168,4 +168,18 @@ std::vector<std::string> csv_fields(const std::string& line) {
   return fields;
 }
 
+SequenceInfo stamped_scans(const std::string& dir, const std::string& sub, const std::string& what,
+                           const std::string& format, double unit, std::vector<std::string>& files) {
+  const std::string folder = (std::filesystem::path(dir) / sub).string();
+  require_dir(folder, what);
+  files = list_scans(folder, {".bin"});
+  if (files.empty()) input_error(folder, 0, "no .bin scan");
+  SequenceInfo info;
+  info.format = format;
+  info.dir = dir;
+  info.recorded = static_cast<int>(files.size());
+  for (const auto& f : files) info.stamps.push_back(static_cast<double>(stem_integer(f)) * unit);
+  return info;
+}
+
 }  // namespace verifybench::sources

@@ -45,6 +45,12 @@ void keep_scans_with_pose(SequenceInfo& info, std::vector<std::string>& files,
                           const std::vector<int>& pose_index, const Trajectory& poses,
                           const std::string& why);
 
+/// The .bin scans of DIR/SUB in stamp order (stems are integer stamps in units of `unit` seconds):
+/// their files, and a SequenceInfo of `format` with dir, recorded and stamps filled in. InputError
+/// when the folder ("what" says what it should hold) is missing or holds no scan.
+SequenceInfo stamped_scans(const std::string& dir, const std::string& sub, const std::string& what,
+                           const std::string& format, double unit, std::vector<std::string>& files);
+
 /// The comma-separated fields of a CSV line, each trimmed of blanks (MulRan's and NCLT's poses).
 std::vector<std::string> csv_fields(const std::string& line);
 

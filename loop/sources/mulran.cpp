@@ -56,15 +56,8 @@ StampedTrajectory read_global_poses(const std::string& path) {
 }
 
 std::unique_ptr<SequenceSource> open(const std::string& dir, const SourceOptions&) {
-  const std::string ouster = (fs::path(dir) / "Ouster").string();
-  require_dir(ouster, "MulRan scans: DIR/Ouster/<ns stamp>.bin");
-  auto files = list_scans(ouster, {".bin"});
-  if (files.empty()) input_error(ouster, 0, "no .bin scan");
-  SequenceInfo info;
-  info.format = "mulran";
-  info.dir = dir;
-  info.recorded = static_cast<int>(files.size());
-  for (const auto& f : files) info.stamps.push_back(static_cast<double>(stem_integer(f)) * 1e-9);
+  std::vector<std::string> files;
+  SequenceInfo info = stamped_scans(dir, "Ouster", "MulRan scans: DIR/Ouster/<ns stamp>.bin", "mulran", 1e-9, files);
 
   info.poses_file = (fs::path(dir) / "global_pose.csv").string();
   require_file(info.poses_file, "MulRan ground truth");

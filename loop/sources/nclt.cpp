@@ -98,15 +98,8 @@ StampedTrajectory read_ground_truth(const std::string& path) {
 }
 
 std::unique_ptr<SequenceSource> open(const std::string& dir, const SourceOptions&) {
-  const std::string scans = (fs::path(dir) / "velodyne_sync").string();
-  require_dir(scans, "NCLT scans: DIR/velodyne_sync/<utime>.bin");
-  auto files = list_scans(scans, {".bin"});
-  if (files.empty()) input_error(scans, 0, "no .bin scan");
-  SequenceInfo info;
-  info.format = "nclt";
-  info.dir = dir;
-  info.recorded = static_cast<int>(files.size());
-  for (const auto& f : files) info.stamps.push_back(static_cast<double>(stem_integer(f)) * 1e-6);
+  std::vector<std::string> files;
+  SequenceInfo info = stamped_scans(dir, "velodyne_sync", "NCLT scans: DIR/velodyne_sync/<utime>.bin", "nclt", 1e-6, files);
 
   info.poses_file = find_ground_truth(dir);
   if (!info.poses_file.empty()) {
