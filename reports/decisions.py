@@ -6,6 +6,15 @@ count; error rows are left out and counted apart.
 
     /usr/bin/python3 reports/decisions.py out/acceptance/*.json [--count K] [--rows]
         [--plot decisions.png]
+    /usr/bin/python3 reports/decisions.py REPORT.json... --protocol 3dmatch|kitti|ROT_DEG,TRANS_M
+
+--protocol scores the fitted motions instead, as registration papers do (3DMatch: Zeng et al.,
+CVPR 2017, as reported by TEASER++, SC2-PCR, MAC, TurboReg): over every row with a true motion
+(negatives left out; error rows count as failures), per solver, the registration recall (rotation
+error < 15 deg and translation error < 0.30 m; KITTI: 5 deg and 0.60 m; or the two given), the mean
+rotation and translation error of the registered pairs, the mean inlier precision, recall and F1
+against the labels (rows with labels), and the mean and median time per pair (solve, and solve plus
+calibration). A pair counts as registered by its motion alone, accepted or not.
 
 --rows prints one line per (dump, solver): expected, inliers, the null's mean and threshold,
 p-value, its range, d^2 of the fitted motion under the set's pose prior (`prior_d2`; "-" without
@@ -68,6 +77,86 @@ def uncertain(row):
     return bool(rng) and alpha is not None and rng[0] < alpha <= rng[1]
 
 
+PROTOCOLS = {"3dmatch": (15.0, 0.30), "kitti": (5.0, 0.60)}
+
+
+def parse_protocol(text):
+    """(max rotation error [deg], max translation error [m]) of a protocol name or 'DEG,M'."""
+    if text in PROTOCOLS:
+        return PROTOCOLS[text]
+    try:
+        rot, trans = (float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--protocol: {text!r} is not 3dmatch, kitti or ROT_DEG,TRANS_M") from None
+    if not (0 < rot <= 180 and 0 < trans < math.inf):
+        raise ValueError(f"--protocol: {text!r}: need 0 < ROT_DEG <= 180 and 0 < TRANS_M")
+    return rot, trans
+
+
+def load_registration_rows(paths):
+    """Every solver row of the reports that has a true motion (expected positive or unlabelled;
+    negatives have none to register): rows with errors, and error rows, which count as failures."""
+    rows = []
+    for path in paths:
+        doc = report_io.load_report(TOOL, path)
+        for r in doc["results"]:
+            if "solver" not in r or r.get("expected") == "negative":
+                continue
+            if r.get("rotation_error_deg") is None and r["status"] != "error":
+                continue  # no ground truth motion
+            rows.append(r)
+    return rows
+
+
+def mean(values):
+    v = [x for x in values if x is not None]
+    return sum(v) / len(v) if v else None
+
+
+def registration_scores(rows, max_rot_deg, max_trans):
+    """The 3DMatch protocol's figures of one solver's rows (load_registration_rows): a dict of
+    pairs, registered, recall, mean rotation error [deg] and translation error [m] of the
+    registered, mean inlier precision / recall / F1, mean and median solve time and solve plus
+    calibration time [ms]."""
+    ok = [r for r in rows if r["status"] != "error" and r.get("rotation_error_deg") is not None
+          and r["rotation_error_deg"] < max_rot_deg and r["translation_error"] < max_trans]
+    total = [r["time_ms"] + (r.get("calibration_ms") or 0.0) for r in rows if r.get("time_ms") is not None]
+    return {
+        "pairs": len(rows),
+        "registered": len(ok),
+        "recall": len(ok) / len(rows) if rows else None,
+        "rotation_error_deg": mean(r["rotation_error_deg"] for r in ok),
+        "translation_error": mean(r["translation_error"] for r in ok),
+        "inlier_precision": mean(r.get("inlier_precision") for r in rows),
+        "inlier_recall": mean(r.get("inlier_recall") for r in rows),
+        "inlier_f1": mean(r.get("inlier_f1") for r in rows),
+        "time_ms_mean": mean(r.get("time_ms") for r in rows),
+        "time_ms_median": median(r.get("time_ms") for r in rows),
+        "total_ms_mean": mean(total),
+    }
+
+
+def registration_table(rows, max_rot_deg, max_trans):
+    """The protocol's table (markdown), one line per solver in the rows' order."""
+    lines = [f"registration: rotation error < {max_rot_deg:g} deg and translation error < "
+             f"{max_trans:g} m; errors of the registered pairs; inlier scores of every pair",
+             "",
+             "| solver | pairs | registered | recall | RE deg | TE cm | inlier P | inlier R | "
+             "inlier F1 | solve ms mean | solve ms median | with calibration ms mean |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for s in dict.fromkeys(r["solver"] for r in rows):
+        g = registration_scores([r for r in rows if r["solver"] == s], max_rot_deg, max_trans)
+        te = g["translation_error"]
+        lines.append(
+            f"| {s} | {g['pairs']} | {g['registered']} | {report_io.fmt(g['recall'], '.3f')} | "
+            f"{report_io.fmt(g['rotation_error_deg'], '.2f')} | "
+            f"{report_io.fmt(None if te is None else 100 * te, '.1f')} | "
+            f"{report_io.fmt(g['inlier_precision'], '.3f')} | {report_io.fmt(g['inlier_recall'], '.3f')} | "
+            f"{report_io.fmt(g['inlier_f1'], '.3f')} | {report_io.fmt(g['time_ms_mean'], '.1f')} | "
+            f"{report_io.fmt(g['time_ms_median'], '.1f')} | {report_io.fmt(g['total_ms_mean'], '.1f')} |")
+    return "\n".join(lines)
+
+
 def count_threshold(row, count):
     return count if count else (10 if row["dim"] == 2 else 5)
 
@@ -77,7 +166,20 @@ def main():
     p.add_argument("--count", type=int, default=0, help="K of the count rule (0: 5 in 3D, 10 in 2D)")
     p.add_argument("--rows", action="store_true", help="one line per dump and solver")
     p.add_argument("--plot", metavar="PNG", help="ROC and precision-recall curves")
+    p.add_argument("--protocol", metavar="NAME",
+                   help="registration recall instead: 3dmatch (15 deg, 0.30 m), kitti (5 deg, 0.60 m) "
+                        "or ROT_DEG,TRANS_M")
     args = p.parse_args()
+    if args.protocol:
+        try:
+            max_rot, max_trans = parse_protocol(args.protocol)
+        except ValueError as e:
+            report_io.fail(TOOL, str(e))
+        reg = load_registration_rows(args.reports)
+        if not reg:
+            report_io.fail(TOOL, "no rows with a true motion in the reports")
+        print(registration_table(reg, max_rot, max_trans))
+        return
     rows, errors, alphas = load_rows(args.reports)
     if not rows:
         report_io.fail(TOOL, "no rows with an expected decision in the reports")
