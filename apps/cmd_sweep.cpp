@@ -45,6 +45,9 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
            "each trial also draws a negative twin (the sides share no motion): the report scores "
            "accept decisions (TP, FP, TN, FN, precision, recall)")
       .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)")
+      .add("planar-motion", "", "",
+           "3D: true rotations are yaw about z only (ground vehicles; Quatro's regime), not "
+           "uniform on SO(3)")
       .add("group-ratio", "R", "0.5", "rigid-group: wrong group size / inlier count")
       .add("grid-spacing", "M", "2", "repetitive: pillar spacing along the corridor [m]")
       .add("overlap", "F", "0.3", "partial-overlap: fraction of the scene holding the inliers")
@@ -71,6 +74,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
   c.negatives = o.flag("negatives");
   c.shape.kind = o.text("generator");
+  c.shape.planar_motion = o.flag("planar-motion");
   c.shape.group_ratio = o.real("group-ratio", 1e-9, 1e9);
   c.shape.grid_spacing = o.real("grid-spacing", 1e-9, 1e9);
   c.shape.overlap = o.real("overlap", 1e-9, 1.0);
@@ -90,7 +94,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   nlohmann::json parameters = cli::params_json(c.params, c.criteria);
   parameters["sweep"] = {{"generator", c.shape.kind},
                          {"generator_shape",
-                          {{"group_ratio", c.shape.group_ratio},
+                          {{"planar_motion", c.shape.planar_motion},
+                           {"group_ratio", c.shape.group_ratio},
                            {"grid_spacing", c.shape.grid_spacing},
                            {"overlap", c.shape.overlap},
                            {"tail_dof", c.shape.tail_dof},

@@ -65,6 +65,13 @@ struct Draws {
   Rigid<Dim> motion() {
     Rigid<Dim> T = Rigid<Dim>::Identity();
     T.linear() = random_rotation<Dim>(rng);
+    if constexpr (Dim == 3) {
+      // Ground vehicles (Quatro's regime): yaw only, uniform; the same draws otherwise.
+      if (p.planar_motion) {
+        T.linear() = Eigen::Matrix3d::Identity();
+        T.linear().template topLeftCorner<2, 2>() = random_rotation<2>(rng);
+      }
+    }
     for (int d = 0; d < Dim; ++d) T.translation()(d) = shift(rng);
     return T;
   }

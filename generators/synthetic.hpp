@@ -18,6 +18,9 @@ struct SyntheticParams {
   double max_translation = 5.0;  ///< each translation component uniform in [-max, max] [m], >= 0
   std::uint64_t seed = 1;        ///< every draw comes from this seed
   std::string kind = "uniform";  ///< one of list_generators()
+  /// 3D: the true rotation is a yaw about z, uniform, roll and pitch 0 (a ground vehicle's loop;
+  /// the regime of Quatro's quasi-SO(3)); false: uniform on SO(3). No effect in 2D.
+  bool planar_motion = false;
   // Per-kind shape (ignored by the other kinds):
   double group_ratio = 0.5;   ///< rigid-group: wrong group size / inlier count, > 0
   double grid_spacing = 2.0;  ///< repetitive: lattice step along and across the corridor [m]
