@@ -157,6 +157,25 @@ def registration_table(rows, max_rot_deg, max_trans):
     return "\n".join(lines)
 
 
+def registration_matrix(rows, max_rot_deg, max_trans):
+    """Registration recall and median solve time per solver (rows) and outlier ratio (columns),
+    markdown; None when the rows hold fewer than two outlier ratios."""
+    ratios = sorted({r.get("outlier_ratio") for r in rows if r.get("outlier_ratio") is not None})
+    if len(ratios) < 2:
+        return None
+    head = " | ".join(f"{100 * x:g}%" for x in ratios)
+    lines = [f"registration recall by outlier ratio (median solve ms)", "",
+             f"| solver | {head} |", "|---|" + "---|" * len(ratios)]
+    for s in dict.fromkeys(r["solver"] for r in rows):
+        cells = []
+        for x in ratios:
+            mine = [r for r in rows if r["solver"] == s and r.get("outlier_ratio") == x]
+            g = registration_scores(mine, max_rot_deg, max_trans)
+            cells.append(f"{report_io.fmt(g['recall'], '.2f')} ({report_io.fmt(g['time_ms_median'], '.3g')})")
+        lines.append(f"| {s} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
 def count_threshold(row, count):
     return count if count else (10 if row["dim"] == 2 else 5)
 
@@ -178,6 +197,9 @@ def main():
         reg = load_registration_rows(args.reports)
         if not reg:
             report_io.fail(TOOL, "no rows with a true motion in the reports")
+        matrix = registration_matrix(reg, max_rot, max_trans)
+        if matrix:
+            print(matrix + "\n")
         print(registration_table(reg, max_rot, max_trans))
         return
     rows, errors, alphas = load_rows(args.reports)

@@ -69,3 +69,12 @@ def test_cli_table(tmp_path):
     bad = subprocess.run([sys.executable, os.path.join(REPORTS, "decisions.py"), str(path),
                           "--protocol", "nope"], capture_output=True, text=True)
     assert bad.returncode == 2 and "--protocol" in bad.stderr
+
+
+def test_matrix_by_outlier_ratio():
+    rows = [dict(row("a", 1.0, 0.1, ms=4.0), outlier_ratio=0.5), dict(row("a", 30.0, 0.1, ms=6.0), outlier_ratio=0.5),
+            dict(row("a", 1.0, 0.1, ms=8.0), outlier_ratio=0.9)]
+    text = decisions.registration_matrix(rows, 15.0, 0.30)
+    assert "| 50% | 90% |" in text
+    assert "| a | 0.50 (5) | 1.00 (8) |" in text
+    assert decisions.registration_matrix(rows[:2], 15.0, 0.30) is None
