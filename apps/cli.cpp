@@ -45,6 +45,7 @@ SuccessCriteria criteria(const Options& o) {
 
 std::string report_path(const Options& o) {
   const std::string out = o.required("out");
+  if (out == "-") return out;  // the report on stdout
   try {
     check_report_path(out);
   } catch (const std::runtime_error& e) {
@@ -93,8 +94,7 @@ void print_point(const std::vector<TrialRecord>& rows) {
     std::fprintf(stderr, "  %dD n=%d outliers=%s%s %-8s success=%s accept=%.2f median=%.2f ms\n",
                  a["dim"].get<int>(), a["n"].get<int>(), a["outlier_ratio"].dump().c_str(),
                  expected.c_str(), a["solver"].get<std::string>().c_str(),
-                 a["success_rate"].dump().c_str(),
-                 a["accept_rate"].get<double>(),
+                 a["success_rate"].dump().c_str(), a["accept_rate"].get<double>(),
                  a["median_time_ms"].is_null() ? 0.0 : a["median_time_ms"].get<double>());
   }
 }
@@ -115,7 +115,8 @@ Shard shard(const Options& o) {
   }
 }
 
-nlohmann::json shard_context(const Options& o, long long units, const std::vector<long long>& row_units) {
+nlohmann::json shard_context(const Options& o, long long units,
+                             const std::vector<long long>& row_units) {
   if (!o.given("shard")) return nullptr;
   return shard_block(shard(o), units, row_units);
 }

@@ -20,7 +20,7 @@ namespace verifybench::cli {
 struct SolverOptionDefaults {
   SolverParams params;  ///< the defaults --help shows and the options start from
   std::string out_value = "FILE.json";
-  std::string out_help = "report path (required; written atomically)";
+  std::string out_help = "report path (required; written atomically; - for stdout)";
 };
 void add_solver_options(Options& o, const SolverOptionDefaults& defaults = {});
 /// The rows (solvers/params.hpp) read onto `defaults` (the same as add_solver_options'), --seed.
@@ -28,7 +28,8 @@ SolverParams solver_params(const Options& o, const SolverParams& defaults = {});
 SuccessCriteria criteria(const Options& o);
 /// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
 std::vector<std::string> solver_names(const Options& o);
-/// --out, checked before any work (check_report_path): a UsageError when it could not be written.
+/// --out, checked before any work (check_report_path): a UsageError when it could not be written;
+/// "-" is stdout (the report goes there, progress and summaries stay on stderr).
 std::string report_path(const Options& o);
 /// The parameters block of a report: common fields, every family field, the success criteria.
 nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c);
@@ -41,12 +42,23 @@ void add_shard_option(Options& o);
 /// The slice asked for (the whole work without --shard); a UsageError on a malformed value.
 Shard shard(const Options& o);
 /// The report's context.shard block when --shard was given, else null.
-nlohmann::json shard_context(const Options& o, long long units, const std::vector<long long>& row_units);
+nlohmann::json shard_context(const Options& o, long long units,
+                             const std::vector<long long>& row_units);
 
 /// One summary line per aggregate of `rows` on stderr.
 void print_point(const std::vector<TrialRecord>& rows);
 
-/// Writes the report atomically and prints its path; returns 1 when a row has status "error"
+/// The report at `out` (atomically; its path printed on stdout), or on stdout for "-".
+inline void write_report(const std::string& out, const nlohmann::json& doc) {
+  if (out == "-") {
+    std::cout << doc.dump(2) << "\n" << std::flush;
+    return;
+  }
+  write_json_atomic(out, doc);
+  std::cout << out << "\n";
+}
+
+/// Writes the report (write_report); returns 1 when a row has status "error"
 /// (its message printed by `describe`), else 0.
 /// `shard` (shard_context) goes into the context when not null.
 template <class Row, class Describe>
@@ -55,8 +67,7 @@ int finish(const std::string& out, const nlohmann::json& parameters, const std::
            const nlohmann::json& shard = nullptr) {
   nlohmann::json context = make_context(argv, seed);
   if (!shard.is_null()) context["shard"] = shard;
-  write_json_atomic(out, make_report(context, parameters, rows));
-  std::cout << out << "\n";
+  write_report(out, make_report(context, parameters, rows));
   for (const auto& r : rows) {
     if (r.status == "error") {
       std::cerr << "verifybench: error: " << describe(r) << "\n";

@@ -4,10 +4,10 @@
 #include <optional>
 
 #include "apps/cli.hpp"
+#include "apps/param_options.hpp"
 #include "cliques/max_clique.hpp"
 #include "datasets/dimacs.hpp"
 #include "harness/harness.hpp"
-#include "apps/param_options.hpp"
 #include "harness/progress.hpp"
 
 namespace verifybench {
@@ -27,7 +27,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
            "clique algorithms (see `verifybench list`)");
   cli::add_rows(o, budget_rows, SolverParams{});
   o.add("seed", "S", "1", "seed of the randomised algorithms (bbmcx-ls; recorded in the report)")
-      .add("out", "FILE.json", "", "report path (required; written atomically)")
+      .add("out", "FILE.json", "", "report path (required; written atomically; - for stdout)")
       .add("quiet", "", "", "no progress lines");
   cli::add_shard_option(o);
   if (o.parse_or_help(
@@ -79,9 +79,10 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
                                      {"time_limit_s", params.time_limit_s},
                                      {"threads", params.threads},
                                      {"seed", params.seed}};
-  return cli::finish(out, parameters, rows, argv, params.seed, [](const CliqueRecord& r) {
-    return r.algorithm + " on " + r.graph + ": " + r.message;
-  }, cli::shard_context(o, units, row_units));
+  return cli::finish(
+      out, parameters, rows, argv, params.seed,
+      [](const CliqueRecord& r) { return r.algorithm + " on " + r.graph + ": " + r.message; },
+      cli::shard_context(o, units, row_units));
 }
 
 }  // namespace verifybench

@@ -1,4 +1,5 @@
 // `verifybench extract`: a correspondence dump from two scans (ISS + B-SHOT, or BEV + ORB).
+#include <filesystem>
 #include <optional>
 
 #include "apps/cli.hpp"
@@ -23,14 +24,25 @@ int cmd_extract(const std::vector<std::string>& args) {
   o.group("front end (the same options as `verifybench loop`)");
   ExtractParams p;
   cli::add_rows(o, frontend_param_rows(), p);
-  if (o.parse_or_help(args, "usage: verifybench extract --source CLOUD --target CLOUD [--gt FILE] "
-                            "[--pipeline 3d|2d|fpfh] --out DIR\n"))
+  if (o.parse_or_help(args,
+                      "usage: verifybench extract --source CLOUD --target CLOUD [--gt FILE] "
+                      "[--pipeline 3d|2d|fpfh] --out DIR\n"))
     return 0;
   cli::read_rows(o, frontend_param_rows(), p);
   p.seed = o.seed("seed");
   p.label_threshold = o.real("label-threshold", 1e-9, 1e9);
   const std::string source = o.required("source"), target = o.required("target");
   const std::string out = o.required("out");
+  {  // refused before the work, as every command does (exit code 2)
+    const std::filesystem::path target(out);
+    const std::filesystem::path parent = target.has_parent_path() ? target.parent_path() : ".";
+    if (std::filesystem::exists(target)) {
+      throw UsageError("--out: dump folder " + out + " exists; remove it or choose another");
+    }
+    if (!std::filesystem::is_directory(parent)) {
+      throw UsageError("--out: cannot write dump " + out + ": no folder " + parent.string());
+    }
+  }
   std::optional<std::string> gt;
   if (o.given("gt")) gt = o.text("gt");
   const Dump dump = extract(source, target, gt, p);

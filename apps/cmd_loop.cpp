@@ -58,14 +58,16 @@ void add_loop_options(Options& o) {
       .add("lidar-noise", "M", "0.02", "range noise sigma")
       .add("lidar-dropout", "P", "0.05", "probability of a lost return")
       .add("world-building-density", "P", "0.2", "chance of a building in a block cell")
-      .add("world-kerb-density", "P", "0.45", "chance of a pole, tree, car or clutter in a kerb cell");
+      .add("world-kerb-density", "P", "0.45",
+           "chance of a pole, tree, car or clutter in a kerb cell");
   o.group("odometry")
       .add("odometry", "drift|gicp|poses|log", "drift",
            "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to the "
            "last --gicp-map-scans scans; poses: --odometry-file (e.g. KISS-ICP's output); log: "
            "the recording's own (a CARMEN log's odometry)")
-      .add("odometry-file", "FILE", "", "poses: a TUM or KITTI file, matched to the scans by "
-                                         "stamp, else by index")
+      .add("odometry-file", "FILE", "",
+           "poses: a TUM or KITTI file, matched to the scans by "
+           "stamp, else by index")
       .add("gicp-map-scans", "K", "1", "gicp: scans in the local map (1 = scan to scan)")
       .add("gicp-voxel", "M", "1", "gicp: scans downsampled to this voxel")
       .add("gicp-max-distance", "M", "1", "gicp: correspondence distance")
@@ -98,11 +100,16 @@ void add_loop_options(Options& o) {
       .add("odometry-prior", "", "",
            "each candidate carries odometry's motion as a pose prior (drift-model sigmas of the "
            "travel between the maps): the pvalue rule's --prior-gate and jcbb's prior mode use it");
-  o.group("front end of each local map (the same options as `verifybench extract`; --max-hamming "
-          "and --max-feature-distance also bound retrieval's votes)");
+  o.group(
+      "front end of each local map (the same options as `verifybench extract`; --max-hamming "
+      "and --max-feature-distance also bound retrieval's votes)");
   cli::add_rows(o, frontend_param_rows(), loop_extract_defaults());
   cli::add_solver_options(o, {loop_solver_defaults(), "DIR",
-                             "report folder: loop.json and loop.md (required)"});
+                              "report folder: loop.json, loop.md, trajectories/ (required; new or "
+                              "empty)"});
+  o.add("overwrite", "", "",
+        "--out may be an earlier run's folder: it is emptied once this run is done, before its "
+        "results are written");
 }
 
 /// A poses file's poses, one per scan: by nearest stamp (within 0.05 s) where the file has stamps
@@ -114,9 +121,9 @@ Trajectory frames_of(const StampedTrajectory& file, const std::vector<double>& s
                         stamps.front() <= file.stamps.back() + 0.05;
   if (!by_stamp) {
     if (!stamps.empty() && file.poses.size() != stamps.size()) {
-      input_error(path, 0, std::to_string(file.poses.size()) + " poses for " +
-                               std::to_string(stamps.size()) +
-                               " scans (no stamps to match them by)");
+      input_error(path, 0,
+                  std::to_string(file.poses.size()) + " poses for " +
+                      std::to_string(stamps.size()) + " scans (no stamps to match them by)");
     }
     return file.poses;
   }
@@ -125,7 +132,8 @@ Trajectory frames_of(const StampedTrajectory& file, const std::vector<double>& s
     const auto it = std::lower_bound(file.stamps.begin(), file.stamps.end(), stamps[i]);
     std::size_t best = it == file.stamps.end() ? file.stamps.size() - 1
                                                : static_cast<std::size_t>(it - file.stamps.begin());
-    if (best > 0 && std::abs(file.stamps[best - 1] - stamps[i]) < std::abs(file.stamps[best] - stamps[i])) {
+    if (best > 0 &&
+        std::abs(file.stamps[best - 1] - stamps[i]) < std::abs(file.stamps[best] - stamps[i])) {
       --best;
     }
     if (std::abs(file.stamps[best] - stamps[i]) > 0.05) {
@@ -195,8 +203,8 @@ LoopConfig loop_config(const Options& o) {
   }
   if (o.text("odometry") == "poses") {
     if (!o.given("odometry-file")) throw UsageError("--odometry poses needs --odometry-file FILE");
-    odometry_poses = frames_of(read_poses_file(o.text("odometry-file")), stamps,
-                               o.text("odometry-file"));
+    odometry_poses =
+        frames_of(read_poses_file(o.text("odometry-file")), stamps, o.text("odometry-file"));
   } else if (o.given("odometry-file")) {
     throw UsageError("--odometry-file goes with --odometry poses");
   }
@@ -298,25 +306,32 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"loop_sigma_trans_m", c.loop_sigma_trans},
                {"loop_sigma_rot_deg", c.loop_sigma_rot_deg},
                {"odometry_prior", c.odometry_prior},
-               {"dense_check", {{"min_overlap", c.dense.min_overlap},
-                                {"cell_m", c.dense.cell},
-                                {"icp_voxel_m", c.dense.icp.voxel},
-                                {"icp_max_distance_m", c.dense.icp.max_correspondence},
-                                {"icp_max_iterations", c.dense.icp.max_iterations}}},
+               {"dense_check",
+                {{"min_overlap", c.dense.min_overlap},
+                 {"cell_m", c.dense.cell},
+                 {"icp_voxel_m", c.dense.icp.voxel},
+                 {"icp_max_distance_m", c.dense.icp.max_correspondence},
+                 {"icp_max_iterations", c.dense.icp.max_iterations}}},
                {"odometry", c.odometry},
-               {"gicp", {{"voxel_m", c.gicp.voxel},
-                         {"max_correspondence_m", c.gicp.max_correspondence},
-                         {"max_iterations", c.gicp.max_iterations},
-                         {"map_scans", c.gicp.map_scans}}},
-               {"drift", {{"trans_rel", c.drift.trans_rel},
-                          {"yaw_deg_per_sqrt_m", c.drift.yaw_deg},
-                          {"tilt_deg_per_sqrt_m", c.drift.tilt_deg}}},
+               {"gicp",
+                {{"voxel_m", c.gicp.voxel},
+                 {"max_correspondence_m", c.gicp.max_correspondence},
+                 {"max_iterations", c.gicp.max_iterations},
+                 {"map_scans", c.gicp.map_scans}}},
+               {"drift",
+                {{"trans_rel", c.drift.trans_rel},
+                 {"yaw_deg_per_sqrt_m", c.drift.yaw_deg},
+                 {"tilt_deg_per_sqrt_m", c.drift.tilt_deg}}},
                {"solvers", c.solvers}};
   if (!c.source) {
-    p["loop"]["lidar"] = {{"beams", c.lidar.beams},           {"columns", c.lidar.columns},
-                          {"fov_up_deg", c.lidar.fov_up_deg}, {"fov_down_deg", c.lidar.fov_down_deg},
-                          {"min_range_m", c.lidar.min_range}, {"max_range_m", c.lidar.max_range},
-                          {"range_noise_m", c.lidar.range_noise}, {"dropout", c.lidar.dropout}};
+    p["loop"]["lidar"] = {{"beams", c.lidar.beams},
+                          {"columns", c.lidar.columns},
+                          {"fov_up_deg", c.lidar.fov_up_deg},
+                          {"fov_down_deg", c.lidar.fov_down_deg},
+                          {"min_range_m", c.lidar.min_range},
+                          {"max_range_m", c.lidar.max_range},
+                          {"range_noise_m", c.lidar.range_noise},
+                          {"dropout", c.lidar.dropout}};
     p["loop"]["world"] = {{"road_half_width_m", c.world.road_half_width},
                           {"kerb_band_m", c.world.kerb_band},
                           {"building_setback_m", c.world.building_setback},
@@ -333,13 +348,14 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
 int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
   Options o;
   add_loop_options(o);
-  if (o.parse_or_help(args, "usage: verifybench loop (--trajectory FILE | --sequence DIR) "
-                            "[options] --out DIR\n"))
+  if (o.parse_or_help(args,
+                      "usage: verifybench loop (--trajectory FILE | --sequence DIR) "
+                      "[options] --out DIR\n"))
     return 0;
   const LoopConfig config = loop_config(o);
   const std::string dir = o.required("out");
   try {
-    check_loop_dir(dir);
+    check_loop_dir(dir, o.flag("overwrite"));
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("--out: ") + e.what());
   }
@@ -359,14 +375,15 @@ int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string
   const nlohmann::json report =
       loop_report(config, run, make_context(argv, config.seed), loop_parameters(o, config));
   const std::string md = loop_markdown(config, run);
+  if (o.flag("overwrite")) clear_loop_dir(dir);
   write_loop_report(dir, report, md);
   write_loop_trajectories(dir, config, run);
   if (!quiet) std::cerr << md;
   std::cout << dir << "/loop.json\n";
   for (const ClosureRow& r : run.rows) {
     if (r.record.status == "error") {
-      std::cerr << "verifybench: error: solver " << r.record.solver << " failed on maps "
-                << r.query << " -> " << r.match << ": " << r.record.message << "\n";
+      std::cerr << "verifybench: error: solver " << r.record.solver << " failed on maps " << r.query
+                << " -> " << r.match << ": " << r.record.message << "\n";
       return 1;
     }
   }

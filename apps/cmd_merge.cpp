@@ -20,8 +20,9 @@ nlohmann::json read_report(const std::string& path) {
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) input_error(path, 0, ec.message());
   if (size > kMaxShardReportBytes) {
-    input_error(path, 0, "size " + std::to_string(size) + " bytes: over the " +
-                             std::to_string(kMaxShardReportBytes >> 20) + " MiB a report may have");
+    input_error(path, 0,
+                "size " + std::to_string(size) + " bytes: over the " +
+                    std::to_string(kMaxShardReportBytes >> 20) + " MiB a report may have");
   }
   std::ifstream in(path);
   if (!in) input_error(path, 0, "cannot open");
@@ -37,13 +38,15 @@ nlohmann::json read_report(const std::string& path) {
 int cmd_merge(const std::vector<std::string>& args, const std::vector<std::string>&) {
   Options o;
   o.allow_positional("SHARD.json")
-      .add("out", "FILE.json", "", "merged report path (required; written atomically)")
+      .add("out", "FILE.json", "",
+           "merged report path (required; written atomically; - for stdout)")
       .add("quiet", "", "", "no summary lines");
-  if (o.parse_or_help(args,
-                      "usage: verifybench merge SHARD.json... --out FILE.json\n"
-                      "Joins the reports of `sweep|run|dimacs ... --shard I/N` (every I of one N,\n"
-                      "one command line, one build) into the unsharded report: rows in the unsharded\n"
-                      "order, aggregates and decisions recomputed.\n"))
+  if (o.parse_or_help(
+          args,
+          "usage: verifybench merge SHARD.json... --out FILE.json\n"
+          "Joins the reports of `sweep|run|dimacs ... --shard I/N` (every I of one N,\n"
+          "one command line, one build) into the unsharded report: rows in the unsharded\n"
+          "order, aggregates and decisions recomputed.\n"))
     return 0;
   if (o.positional().empty()) throw UsageError("no shard report given");
   const std::string out = cli::report_path(o);
@@ -55,8 +58,7 @@ int cmd_merge(const std::vector<std::string>& args, const std::vector<std::strin
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
-  write_json_atomic(out, merged);
-  std::cout << out << "\n";
+  cli::write_report(out, merged);
   if (!o.flag("quiet")) {
     std::cerr << "merge: " << docs.size() << " shards, " << merged["results"].size() << " rows\n";
   }

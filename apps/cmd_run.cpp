@@ -20,7 +20,9 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
       .add("trials", "K", "1", "repeat each solver K times (timing statistics)")
       .add("expected", "E", "auto",
            "the expected decision: positive, negative, or auto (MANIFEST.tsv beside the dump; "
-           "else negative when its labels hold no true inlier; else unknown)");
+           "else, where the dump has labels, positive when any label is a true inlier, negative "
+           "when none "
+           "is; else unknown)");
   cli::add_prior_options(o, "the set (it needs a ground truth)");
   cli::add_shard_option(o);
   if (o.parse_or_help(args, "usage: verifybench run --dump DIR [options] --out FILE.json\n"))
@@ -50,9 +52,9 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
         validate(s);
         s.truth.positive = expected;
         const auto& labels = s.truth.labels;
-        if (!expected && !labels.empty() &&
-            std::find(labels.begin(), labels.end(), 1) == labels.end()) {
-          s.truth.positive = false;  // no true inlier: the sides share no motion
+        if (!expected && !labels.empty()) {
+          // Any true label: the sides share a motion (positive); none: they share none.
+          s.truth.positive = std::find(labels.begin(), labels.end(), 1) != labels.end();
         }
         if (prior_rot > 0.0) {
           if (!s.truth.T_target_source) {
@@ -62,8 +64,8 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
           add_pose_prior(s, prior_rot, prior_trans, params.seed);
         }
         Progress progress("run", shard.owned(units), !o.flag("quiet"));
-        return run_on_set(names, s, dir, trials, params.seed, params, crit,
-                          [&] { progress.advance(); }, shard);
+        return run_on_set(
+            names, s, dir, trials, params.seed, params, crit, [&] { progress.advance(); }, shard);
       },
       dump.set);
   if (!o.flag("quiet")) cli::print_point(rows);

@@ -121,9 +121,11 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   std::vector<long long> row_units;
   for (const auto& r : rows) {
     const long long d = std::find(c.dims.begin(), c.dims.end(), r.dim) - c.dims.begin();
-    const long long k = std::find(c.outlier_ratios.begin(), c.outlier_ratios.end(), *r.outlier_ratio) -
-                        c.outlier_ratios.begin();
-    row_units.push_back((d * static_cast<long long>(c.outlier_ratios.size()) + k) * c.trials + r.trial);
+    const long long k =
+        std::find(c.outlier_ratios.begin(), c.outlier_ratios.end(), *r.outlier_ratio) -
+        c.outlier_ratios.begin();
+    row_units.push_back((d * static_cast<long long>(c.outlier_ratios.size()) + k) * c.trials +
+                        r.trial);
   }
   return cli::finish(out, parameters, rows, argv, c.seed, cli::describe_error,
                      cli::shard_context(o, c.units(), row_units));

@@ -1,4 +1,8 @@
 // verifybench: command-line front end; see `verifybench --help`. One file per command (cmd_*.cpp).
+// Exit codes, one per failure class (README, "Exit codes"): 0 done; 1 done, but rows have status
+// error (the report is written and says why); 2 refused before any work (bad command line, unknown
+// name, malformed or unreadable input, an output that cannot or may not be written); 3 failed
+// during the work (a write that failed, out of memory), leaving nothing half-written.
 #include <iostream>
 
 #include "apps/cli.hpp"
@@ -29,7 +33,8 @@ const Command kCommands[] = {
      [](const auto& args, const auto&) { return vb::cmd_extract(args); }},
     {"loop", "loop closure on a sequence: local maps, retrieval, solvers, P/R/F1, pose graph, APE",
      vb::cmd_loop},
-    {"merge", "the reports of every shard (--shard I/N) of one command joined into one", vb::cmd_merge},
+    {"merge", "the reports of every shard (--shard I/N) of one command joined into one",
+     vb::cmd_merge},
 };
 
 std::string usage() {
@@ -78,9 +83,9 @@ int main(int argc, char** argv) {
     std::cerr << "verifybench: error: " << e.what() << "\n";
   } catch (const std::invalid_argument& e) {  // unknown solver, invalid parameter or set
     std::cerr << "verifybench: error: " << e.what() << "\n";
-  } catch (const std::exception& e) {  // could not write the report, out of memory, ...
+  } catch (const std::exception& e) {  // failed during the work: a write, out of memory, ...
     std::cerr << "verifybench: error: " << e.what() << "\n";
-    return 1;
+    return 3;
   }
   return 2;
 }

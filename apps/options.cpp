@@ -7,6 +7,8 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/suggest.hpp"
+
 namespace verifybench {
 
 double parse_real(const std::string& what, const std::string& text) {
@@ -29,7 +31,14 @@ Options& Options::add(const std::string& name, const std::string& value_name,
   return *this;
 }
 
-void Options::parse(const std::vector<std::string>& args) {
+void Options::parse(const std::vector<std::string>& given_args) {
+  // Short aliases users expect: -o for --out, -q for --quiet, where the command has them.
+  std::vector<std::string> args;
+  for (const std::string& arg : given_args) {
+    const bool out = arg == "-o" && specs_.count("out"),
+               quiet = arg == "-q" && specs_.count("quiet");
+    args.push_back(out ? "--out" : quiet ? "--quiet" : arg);
+  }
   // CLI11 does the splitting ("--name value", "--name=value", positionals, help); the checks it
   // words differently come first, so every message names the option as the rest of the tool does.
   std::map<std::string, int> seen;
@@ -38,7 +47,13 @@ void Options::parse(const std::vector<std::string>& args) {
     const std::string name =
         arg.substr(2, arg.find('=') == std::string::npos ? std::string::npos : arg.find('=') - 2);
     const auto spec = specs_.find(name);
-    if (spec == specs_.end()) throw UsageError("unknown option '--" + name + "' (see --help)");
+    if (spec == specs_.end()) {
+      std::vector<std::string> names;
+      for (const auto& [known, unused] : specs_) names.push_back(known);
+      const std::string near = nearest_name(name, names);
+      throw UsageError("unknown option '--" + name + "' (" +
+                       (near.empty() ? "" : "did you mean --" + near + "?; ") + "see --help)");
+    }
     if (++seen[name] > 1) throw UsageError("option --" + name + " given twice");
     if (spec->second.value_name.empty() && arg.find('=') != std::string::npos) {
       throw UsageError("option --" + name + " takes no value");
@@ -94,7 +109,9 @@ std::string Options::help() const {
       continue;
     }
     const Spec& s = specs_.at(name);
-    std::string head = "  --" + name + (s.value_name.empty() ? "" : " " + s.value_name);
+    const char* alias = name == "out" ? "-o, " : name == "quiet" ? "-q, " : "";
+    std::string head =
+        "  " + std::string(alias) + "--" + name + (s.value_name.empty() ? "" : " " + s.value_name);
     out << head << std::string(head.size() < 30 ? 30 - head.size() : 1, ' ') << s.help;
     if (!s.fallback.empty()) out << " (default " << s.fallback << ")";
     out << "\n";

@@ -27,8 +27,8 @@ class Options {
     positional_name_ = name;
     return *this;
   }
-  /// Throws UsageError on an unknown option, a missing value, a repeated option or a stray
-  /// argument.
+  /// Throws UsageError on an unknown option (naming the nearest known one), a missing value, a
+  /// repeated option or a stray argument. `-o` and `-q` stand for --out and --quiet where declared.
   void parse(const std::vector<std::string>& args);
   const std::vector<std::string>& positional() const { return positional_; }
   /// parse(); then, when --help was given, prints `usage` and the options and returns true.

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/suggest.hpp"
+
 namespace verifybench {
 
 /// An unknown name; the message lists the known ones.
@@ -35,11 +37,17 @@ class Registry {
                        [](const auto& a, const auto& b) { return a->name < b->name; });
     }
   }
-  /// Throws UnknownName: "unknown WHAT 'NAME' (known: a, b, c)".
+  /// Throws UnknownName: "unknown WHAT 'NAME' (did you mean 'NEAR'?; known: a, b, c)", the
+  /// suggestion only when a known name is a likely typo (core/suggest.hpp).
   const Info& get(const std::string& name) const {
     std::lock_guard<std::mutex> lock(mutex_);
     if (const Info* info = find(name)) return *info;
-    throw UnknownName("unknown " + what_ + " '" + name + "' (known: " + known_locked() + ")");
+    std::vector<std::string> names;
+    for (const auto& e : entries_) names.push_back(e->name);
+    const std::string near = nearest_name(name, names);
+    throw UnknownName("unknown " + what_ + " '" + name + "' (" +
+                      (near.empty() ? "" : "did you mean '" + near + "'?; ") +
+                      "known: " + known_locked() + ")");
   }
   bool contains(const std::string& name) const {
     std::lock_guard<std::mutex> lock(mutex_);

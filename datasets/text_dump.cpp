@@ -135,6 +135,12 @@ AnySet finish(const std::string& dir, const std::string& corr_file, const std::v
 }  // namespace
 
 AnySet read_text_dump(const std::string& dir) {
+  if (fs::is_regular_file(dir)) {
+    const fs::path folder = fs::path(dir).has_parent_path() ? fs::path(dir).parent_path() : ".";
+    fail(dir, 0,
+         "is a file; --dump takes the dump's folder (" + folder.string() +
+             "), which holds dump.json + matches.tsv or corr.txt");
+  }
   if (!fs::is_directory(dir)) fail(dir, 0, "dump folder does not exist or is not a folder");
   const std::string corr_file = (fs::path(dir) / "corr.txt").string();
   if (!fs::exists(corr_file)) fail(corr_file, 0, "missing (a dump folder needs corr.txt)");

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -20,8 +21,8 @@ using json = nlohmann::json;
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json ape_json(const ApeStats& a) {
-  return {{"rmse", a.rmse}, {"mean", a.mean}, {"median", a.median}, {"max", a.max},
-          {"poses", a.poses}};
+  return {
+      {"rmse", a.rmse}, {"mean", a.mean}, {"median", a.median}, {"max", a.max}, {"poses", a.poses}};
 }
 
 json score_json(const ClosureScore& s) {
@@ -78,20 +79,22 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
                  const json& parameters) {
   json maps = json::array();
   for (const MapInfo& m : run.maps) {
-    maps.push_back({{"index", m.index},
-                    {"first_frame", m.first_frame + config.first_frame},
-                    {"last_frame", m.last_frame + config.first_frame},
-                    {"anchor_frame", m.anchor + config.first_frame},
-                    {"scans", m.scans},
-                    {"points", m.points},
-                    {"keypoints", m.keypoints},
-                    {"occupied_cells", m.occupied_cells},
-                    {"position_truth", {m.position_truth.x(), m.position_truth.y(),
-                                        m.position_truth.z()}}});
+    maps.push_back(
+        {{"index", m.index},
+         {"first_frame", m.first_frame + config.first_frame},
+         {"last_frame", m.last_frame + config.first_frame},
+         {"anchor_frame", m.anchor + config.first_frame},
+         {"scans", m.scans},
+         {"points", m.points},
+         {"keypoints", m.keypoints},
+         {"occupied_cells", m.occupied_cells},
+         {"position_truth", {m.position_truth.x(), m.position_truth.y(), m.position_truth.z()}}});
   }
   json truths = json::array();
   for (const TrueClosure& t : run.true_closures) {
-    truths.push_back({{"query", t.query}, {"match", t.match}, {"overlap", t.overlap},
+    truths.push_back({{"query", t.query},
+                      {"match", t.match},
+                      {"overlap", t.overlap},
                       {"distance_m", t.distance}});
   }
   json closures = json::array();
@@ -109,14 +112,14 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
     row["T_match_query_truth"] = matrix_json(r.T_truth);
     row["rule_accepted"] = r.rule_accepted;
     if (r.dense.ran) {
-      row["dense_check"] = {{"overlap", r.dense.overlap},
-                            {"icp_converged", r.dense.icp.converged},
-                            {"icp_fitness_m2", r.dense.icp.fitness},
-                            {"refined_translation_error_m",
-                             (r.T_estimate.translation() - r.T_truth.translation()).norm()},
-                            {"refined_rotation_error_deg",
-                             rotation_error_deg<3>(r.T_estimate, r.T_truth)},
-                            {"T_match_query_refined", matrix_json(r.dense.icp.T_target_source)}};
+      row["dense_check"] = {
+          {"overlap", r.dense.overlap},
+          {"icp_converged", r.dense.icp.converged},
+          {"icp_fitness_m2", r.dense.icp.fitness},
+          {"refined_translation_error_m",
+           (r.T_estimate.translation() - r.T_truth.translation()).norm()},
+          {"refined_rotation_error_deg", rotation_error_deg<3>(r.T_estimate, r.T_truth)},
+          {"T_match_query_refined", matrix_json(r.dense.icp.T_target_source)}};
     } else {
       row["dense_check"] = nullptr;
     }
@@ -142,10 +145,11 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
                 {"ape_without", ape_json(run.ape_without)},
                 {"ape_with", ape_json(s.ape_with)},
                 {"ape_with_robust", ape_json(s.ape_with_robust)},
-                {"pose_graph", {{"iterations", s.graph_iterations},
-                                {"converged", s.graph_converged},
-                                {"iterations_robust", s.graph_iterations_robust},
-                                {"converged_robust", s.graph_converged_robust}}}};
+                {"pose_graph",
+                 {{"iterations", s.graph_iterations},
+                  {"converged", s.graph_converged},
+                  {"iterations_robust", s.graph_iterations_robust},
+                  {"converged_robust", s.graph_converged_robust}}}};
     row.update(score_json(s.score));
     summary.push_back(row);
     json count = json::array(), alpha = json::array();
@@ -213,10 +217,29 @@ std::string loop_markdown(const LoopConfig& config, const LoopRun& run) {
   return md.str();
 }
 
-void check_loop_dir(const std::string& dir) {
+void check_loop_dir(const std::string& dir, bool overwrite) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec)) {
+    if (!overwrite) {
+      throw std::runtime_error(dir +
+                               " holds earlier results; pass --overwrite to replace them "
+                               "(the folder is emptied first), or choose another folder");
+    }
+    if (!fs::exists(fs::path(dir) / "loop.json")) {
+      throw std::runtime_error(
+          "--overwrite empties only a loop output folder (one with loop.json); " + dir +
+          " has none");
+    }
+  }
   make_folder(dir);
   check_report_path(dir + "/loop.json");
   check_report_path(dir + "/loop.md");
+}
+
+void clear_loop_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
 }
 
 void write_loop_trajectories(const std::string& dir, const LoopConfig& config, const LoopRun& run) {

@@ -34,7 +34,12 @@ void write_loop_report(const std::string& dir, const nlohmann::json& report,
 /// frame indices. Throws std::runtime_error naming the path.
 void write_loop_trajectories(const std::string& dir, const LoopConfig& config, const LoopRun& run);
 /// Checks before the work that DIR is (or can become) a writable folder whose loop.json and
-/// loop.md can be written; throws std::runtime_error naming the path.
-void check_loop_dir(const std::string& dir);
+/// loop.md can be written, and that it holds no earlier results: an existing folder must be empty,
+/// or, with `overwrite`, a loop output folder (one with loop.json). Throws std::runtime_error
+/// naming the path.
+void check_loop_dir(const std::string& dir, bool overwrite = false);
+/// Empties DIR (--overwrite, after the run and before its results are written), so the folder
+/// never mixes two runs' files.
+void clear_loop_dir(const std::string& dir);
 
 }  // namespace verifybench

@@ -257,7 +257,8 @@ TEST(Cli, ReportIntoMissingFolderFailsCleanly) {
   EXPECT_EQ(r.code, 2);  // found before the work, not after it
   EXPECT_NE(r.output.find("--out: cannot write report /nonexistent/dir/r.json"), std::string::npos)
       << r.output;
-  EXPECT_EQ(r.output.find("sweep"), std::string::npos) << "no progress before the refusal: " << r.output;
+  EXPECT_EQ(r.output.find("sweep"), std::string::npos)
+      << "no progress before the refusal: " << r.output;
   for (const std::string cmd : {"sweep --n 20 --trials 1 --quiet", "dimacs x.clq --quiet"}) {
     const CliRun d = run(cmd + " --out /dev/null");
     EXPECT_EQ(d.code, 2) << cmd << "\n" << d.output;
@@ -284,4 +285,91 @@ TEST(Cli, StructuredSweepWithPriorsRecordsGeneratorAndShape) {
   for (const auto& row : doc["results"]) EXPECT_EQ(row["generator"], "rigid-group");
   for (const auto& agg : doc["aggregates"]) EXPECT_EQ(agg["generator"], "rigid-group");
   fs::remove(out);
+}
+
+namespace {
+
+// A 3D text dump of `n` correspondences on a known motion (a shift of (1, 2, 3)), labels given.
+fs::path labelled_dump(const std::string& name, bool any_true) {
+  const fs::path dir = fs::temp_directory_path() / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream corr(dir / "corr.txt"), label(dir / "label.txt");
+  for (int i = 0; i < 30; ++i) {
+    const double x = i % 5, y = (i / 5) % 3, z = i * 0.37;
+    corr << x << " " << y << " " << z << " " << x + 1 << " " << y + 2 << " " << z + 3 << "\n";
+    label << (any_true && i < 20 ? 1 : 0) << "\n";
+  }
+  return dir;
+}
+
+/// The CLI's stdout alone (stderr dropped) and its exit code.
+CliRun stdout_of(const std::string& args) {
+  const std::string cmd = std::string(VERIFYBENCH_CLI) + " " + args + " 2>/dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string text;
+  char buf[4096];
+  while (pipe && fgets(buf, sizeof buf, pipe)) text += buf;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+}  // namespace
+
+TEST(Cli, UnknownNamesSuggestTheNearestKnownOne) {
+  expect_usage_error("sweep --solver clique " + kOut, "did you mean --solvers?");
+  expect_usage_error("sweep --outlier 0.5 " + kOut, "did you mean --outliers?");
+  expect_usage_error("sweep --solvers clqiue " + kOut, "did you mean 'clique'?");
+  expect_usage_error("sweep --solvers sc2 " + kOut, "did you mean 'sc2-pcr'?");
+  expect_usage_error("sweep --generator unifrom " + kOut, "did you mean 'uniform'?");
+  // Nothing near: no suggestion, the list of known names only.
+  const CliRun far = run("sweep --solvers zzzzzzzz " + kOut);
+  EXPECT_EQ(far.code, 2);
+  EXPECT_EQ(far.output.find("did you mean"), std::string::npos) << far.output;
+  EXPECT_NE(far.output.find("known: "), std::string::npos) << far.output;
+}
+
+TEST(Cli, ShortAliasesAndTheReportOnStdout) {
+  const fs::path out = fs::temp_directory_path() / "vb_cli_alias.json";
+  fs::remove(out);
+  const CliRun r = run("sweep --n 30 --outliers 0.5 --trials 1 -q -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_EQ(r.output, out.string() + "\n");  // -q: only the path
+  // --out -: the report itself on stdout (stderr left out here), no file named '-'.
+  const CliRun piped = stdout_of("sweep --n 30 --outliers 0.5 --trials 1 --quiet --out -");
+  ASSERT_EQ(piped.code, 0);
+  const auto doc = nlohmann::json::parse(piped.output);
+  EXPECT_EQ(doc["schema_version"], 1);
+  EXPECT_EQ(doc["results"].size(), 2u);  // clique and ransac, one set
+  EXPECT_FALSE(fs::exists("-"));
+  EXPECT_NE(run("sweep --help").output.find("-o, --out FILE.json"), std::string::npos);
+}
+
+TEST(Cli, ExpectedDecisionFollowsTheLabels) {
+  for (const bool any_true : {true, false}) {
+    const fs::path dir =
+        labelled_dump(any_true ? "vb_cli_labels_pos" : "vb_cli_labels_neg", any_true);
+    const fs::path out = dir / "r.json";
+    const CliRun r = run("run --dump " + dir.string() +
+                         " --solvers clique --eps 0.05 --accept count "
+                         "--quiet --out " +
+                         out.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out);
+    const auto doc = nlohmann::json::parse(in);
+    EXPECT_EQ(doc["results"][0]["expected"], any_true ? "positive" : "negative");
+    // Given, it wins over the labels.
+    const CliRun given = stdout_of("run --dump " + dir.string() +
+                                   " --solvers clique --eps 0.05 "
+                                   "--accept count --expected negative --quiet --out -");
+    ASSERT_EQ(given.code, 0);
+    EXPECT_EQ(nlohmann::json::parse(given.output)["results"][0]["expected"], "negative");
+  }
+}
+
+TEST(Cli, DumpGivenAsItsFileNamesTheFolderToPass) {
+  const fs::path dir = labelled_dump("vb_cli_dumpfile", true);
+  expect_usage_error("run --dump " + (dir / "corr.txt").string() + " " + kOut,
+                     "--dump takes the dump's folder (" + dir.string() + ")");
 }

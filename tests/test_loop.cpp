@@ -3,6 +3,7 @@
 // trajectory (always) and on a KITTI 00 excerpt (skipped without ../shared/data).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -12,13 +13,12 @@
 #include <random>
 #include <set>
 #include <sstream>
-#include <algorithm>
 
+#include "core/metrics.hpp"
 #include "datasets/trajectory.hpp"
 #include "frontend/scan_odometry.hpp"
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
-#include "core/metrics.hpp"
 #include "loop/dense_check.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/pose_graph.hpp"
@@ -76,7 +76,8 @@ TEST(LocalMaps, OverlapRatioByHand) {
 std::vector<Eigen::Vector3f> line_scan(const vb::Rigid<3>& T) {
   std::vector<Eigen::Vector3f> out;
   const double x0 = T.translation().x();
-  for (int x = static_cast<int>(std::ceil(x0 - 30)); x <= static_cast<int>(std::floor(x0 + 30)); ++x) {
+  for (int x = static_cast<int>(std::ceil(x0 - 30)); x <= static_cast<int>(std::floor(x0 + 30));
+       ++x) {
     for (double y : {-6.2, 0.2, 6.2}) {
       for (double z : {0.2, 2.2}) {
         out.push_back((T.inverse() * Eigen::Vector3d(x + 0.25, y, z)).cast<float>());
@@ -91,7 +92,8 @@ TEST(LocalMaps, MapPointsAndOccupancyAreTheWorldsPoints) {
   std::vector<int> frames;
   for (int f = 0; f <= 50; ++f) frames.push_back(f);
   vb::LocalMapParams p;
-  const vb::LocalMap m = vb::build_local_map(0, frames, truth, truth, [&](int f) { return line_scan(truth[f]); }, p);
+  const vb::LocalMap m = vb::build_local_map(
+      0, frames, truth, truth, [&](int f) { return line_scan(truth[f]); }, p);
   EXPECT_EQ(m.anchor, 25);
   // World x in [-30, 80] (frames 0..50, +-30 m): 111 x 3 x 2 points, one per voxel.
   EXPECT_EQ(m.points.size(), 111u * 6u);
@@ -164,17 +166,20 @@ TEST(GroundTruth, ClosuresOfAnOutAndBackPathMatchTheIntervalOracle) {
   // overlap is the intervals' common length over the shorter one.
   auto interval = [&](const std::vector<int>& g) {
     double lo = 1e9, hi = -1e9;
-    for (int f : g) lo = std::min(lo, truth[f].translation().x()), hi = std::max(hi, truth[f].translation().x());
+    for (int f : g)
+      lo = std::min(lo, truth[f].translation().x()), hi = std::max(hi, truth[f].translation().x());
     return std::pair<double, double>(std::floor(lo - 30), std::floor(hi + 30));
   };
   std::set<std::pair<int, int>> expected;
   for (std::size_t q = 0; q < groups.size(); ++q) {
     for (std::size_t m = 0; m + 3 <= q; ++m) {
       const auto a = interval(groups[q]), b = interval(groups[m]);
-      const double common = std::max(0.0, std::min(a.second, b.second) - std::max(a.first, b.first) + 1);
+      const double common =
+          std::max(0.0, std::min(a.second, b.second) - std::max(a.first, b.first) + 1);
       const double ratio = common / std::min(a.second - a.first + 1, b.second - b.first + 1);
       const double d = (truth[groups[q][groups[q].size() / 2]].translation() -
-                        truth[groups[m][groups[m].size() / 2]].translation()).norm();
+                        truth[groups[m][groups[m].size() / 2]].translation())
+                           .norm();
       ASSERT_GT(std::abs(ratio - 0.5), 0.02) << "borderline pair " << q << ", " << m;
       if (ratio > 0.5 && d < 100) expected.insert({static_cast<int>(q), static_cast<int>(m)});
     }
@@ -186,8 +191,8 @@ TEST(GroundTruth, ClosuresOfAnOutAndBackPathMatchTheIntervalOracle) {
 }
 
 TEST(Scores, PrecisionRecallF1ByHand) {
-  const auto s = vb::score_closures({true, true, false, true, false},
-                                    {true, false, false, true, true}, 4);
+  const auto s =
+      vb::score_closures({true, true, false, true, false}, {true, false, false, true, true}, 4);
   EXPECT_EQ(s.tp, 2);
   EXPECT_EQ(s.fp, 1);
   EXPECT_EQ(s.fn, 2);
@@ -282,7 +287,8 @@ TEST(PoseGraph, TrueLoopsShrinkDriftAndARobustLossShrugsOffAFalseOne) {
     e.sigma << 0.02, 0.02, 0.02, 0.3, 0.3, 0.3;
     loops.push_back(e);
   }
-  const double with = vb::absolute_pose_error(vb::optimise_pose_graph(odo, loops, {}).poses, truth).rmse;
+  const double with =
+      vb::absolute_pose_error(vb::optimise_pose_graph(odo, loops, {}).poses, truth).rmse;
   EXPECT_GT(without, 5.0);
   EXPECT_LT(with, 0.3 * without) << without << " -> " << with;
   // One false loop (map 70 said to be at map 5, 200+ m away): plain least squares is pulled by it,
@@ -352,8 +358,8 @@ DrawnMaps draw_maps(int n_maps, int per_map, std::uint64_t seed) {
       const int from_map = copy ? static_cast<int>(rng() % m) : -1;
       const int from_row = static_cast<int>(rng() % per_map);
       for (int w = 0; w < 4; ++w) {
-        row[w] = copy ? d.binary[from_map].descriptors.row(from_row)[w] ^ (1ull << (rng() % 64))
-                      : rng();
+        row[w] =
+            copy ? d.binary[from_map].descriptors.row(from_row)[w] ^ (1ull << (rng() % 64)) : rng();
       }
       for (int j = 0; j < 33; ++j) {
         const float noise = static_cast<float>(rng() % 1000) / 1e5f;
@@ -369,8 +375,8 @@ DrawnMaps draw_maps(int n_maps, int per_map, std::uint64_t seed) {
 
 // The oracle: votes by exhaustive nearest-neighbour search over maps 0 .. q - gap, then the top
 // `candidates` by votes (at least min_votes; ties: the older map).
-std::vector<vb::Candidate> brute_force_candidates(const std::vector<vb::Features>& maps,
-                                                  bool real, const vb::RetrievalParams& p) {
+std::vector<vb::Candidate> brute_force_candidates(const std::vector<vb::Features>& maps, bool real,
+                                                  const vb::RetrievalParams& p) {
   std::vector<vb::Candidate> out;
   for (int q = 0; q < static_cast<int>(maps.size()); ++q) {
     std::vector<int> votes(maps.size(), 0);
@@ -475,7 +481,8 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   const fs::path dir = block_twice_folder("vb_loop_cli");
   const auto r = run_cli("loop --trajectory " + (dir / "poses.txt").string() +
                          " --pipeline 2d --solvers clique,ransac --accept count --scan-spacing 4"
-                         " --lidar-columns 512 --quiet --threads 2 --out " + (dir / "out").string());
+                         " --lidar-columns 512 --quiet --threads 2 --out " +
+                         (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(dir / "out" / "loop.json");
   const auto j = nlohmann::json::parse(in);
@@ -505,8 +512,8 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   // The trajectories as TUM files (the TUM RGB-D format: "timestamp tx ty tz qx qy qz qw", a unit
   // quaternion): the reference is the input trajectory at the frames used, stamped by frame index.
   const auto input = vb::read_kitti_poses((dir / "poses.txt").string());
-  for (const char* name : {"reference", "odometry", "clique", "clique_robust", "ransac",
-                           "ransac_robust"}) {
+  for (const char* name :
+       {"reference", "odometry", "clique", "clique_robust", "ransac", "ransac_robust"}) {
     std::ifstream tum(dir / "out" / "trajectories" / (std::string(name) + ".tum"));
     ASSERT_TRUE(tum) << name;
     std::size_t k = 0;
@@ -532,19 +539,44 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
     const std::string plot = "/usr/bin/python3 " + std::string(VERIFYBENCH_SOURCE_DIR) +
                              "/reports/plot_loop.py " + (dir / "out").string() + " 2>&1";
     ASSERT_EQ(std::system(plot.c_str()), 0) << plot;
-    for (const char* png : {"loop_trajectory_clique.png", "loop_trajectory_ransac.png", "loop_pr.png"}) {
+    for (const char* png :
+         {"loop_trajectory_clique.png", "loop_trajectory_ransac.png", "loop_pr.png"}) {
       EXPECT_GT(fs::file_size(dir / "out" / png), 10000u) << png;
     }
     // loop.json conforms to reports/schema/loop.schema.json, and a closure row with an unknown
     // status does not.
-    const std::string check = "/usr/bin/python3 " + std::string(VERIFYBENCH_SOURCE_DIR) +
-                              "/reports/check_schema.py ";
-    EXPECT_EQ(std::system((check + (dir / "out" / "loop.json").string() + " >/dev/null").c_str()), 0);
+    const std::string check =
+        "/usr/bin/python3 " + std::string(VERIFYBENCH_SOURCE_DIR) + "/reports/check_schema.py ";
+    EXPECT_EQ(std::system((check + (dir / "out" / "loop.json").string() + " >/dev/null").c_str()),
+              0);
     nlohmann::json broken = j;
     broken["closures"][0]["status"] = "fine";
     std::ofstream((dir / "broken.json").string()) << broken.dump();
     EXPECT_NE(std::system((check + (dir / "broken.json").string() + " >/dev/null").c_str()), 0);
   }
+  // An earlier run's folder is refused before any work; --overwrite empties it once the new run is
+  // done (the old figures go with it: one run's files only); a folder that is not a loop output is
+  // never emptied.
+  const std::string again = "loop --trajectory " + (dir / "poses.txt").string() +
+                            " --pipeline 2d --solvers clique --accept count --scan-spacing 4"
+                            " --lidar-columns 512 --quiet --threads 2 --out ";
+  const auto refused = run_cli(again + (dir / "out").string());
+  EXPECT_EQ(refused.code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("holds earlier results; pass --overwrite"), std::string::npos)
+      << refused.output;
+  std::ofstream(dir / "out" / "stale.png") << "x";
+  const auto replaced = run_cli(again + (dir / "out").string() + " --overwrite");
+  ASSERT_EQ(replaced.code, 0) << replaced.output;
+  EXPECT_FALSE(fs::exists(dir / "out" / "stale.png"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "loop_pr.png"));
+  std::ifstream second(dir / "out" / "loop.json");
+  EXPECT_EQ(nlohmann::json::parse(second)["summary"].size(), 1u);  // this run's one solver
+  fs::create_directories(dir / "notes");
+  std::ofstream(dir / "notes" / "thesis.tex") << "x";
+  const auto kept = run_cli(again + (dir / "notes").string() + " --overwrite");
+  EXPECT_EQ(kept.code, 2) << kept.output;
+  EXPECT_NE(kept.output.find("only a loop output folder"), std::string::npos) << kept.output;
+  EXPECT_TRUE(fs::exists(dir / "notes" / "thesis.tex"));
 }
 
 // --odometry-prior on the drawn block driven twice, calibrated rule: every candidate carries
@@ -558,8 +590,8 @@ TEST(LoopCli, OdometryPriorOnlyGatesTheCalibratedDecisions) {
   auto run = [&](const std::string& extra, const std::string& out) {
     const auto r = run_cli("loop --trajectory " + (dir / "poses.txt").string() +
                            " --pipeline 2d --solvers clique --accept pvalue --scan-spacing 4"
-                           " --lidar-columns 512 --quiet --threads 2 " + extra + " --out " +
-                           (dir / out).string());
+                           " --lidar-columns 512 --quiet --threads 2 " +
+                           extra + " --out " + (dir / out).string());
     EXPECT_EQ(r.code, 0) << r.output;
     std::ifstream in(dir / out / "loop.json");
     return nlohmann::json::parse(in);
@@ -645,7 +677,8 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
   const fs::path dir = fs::temp_directory_path() / "vb_loop_seq";
   fs::remove_all(dir);
   fs::create_directories(dir / "velodyne");
-  vb::Rigid<3> Tr = vb::Rigid<3>::Identity();  // T_camera_velodyne: x fwd -> z, y left -> -x, z up -> -y
+  vb::Rigid<3> Tr =
+      vb::Rigid<3>::Identity();  // T_camera_velodyne: x fwd -> z, y left -> -x, z up -> -y
   Tr.linear() << 0, -1, 0, 0, 0, -1, 1, 0, 0;
   std::ofstream(dir / "calib.txt") << "P0: 0 0 0\nTr: 0 -1 0 0 0 0 -1 0 1 0 0 0\n";
   std::vector<vb::Rigid<3>> camera;
@@ -667,7 +700,8 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
   }
   const auto r = run_cli("loop --sequence " + dir.string() +
                          " --pipeline 2d --solvers clique --accept count --scan-spacing 2.9 --quiet"
-                         " --out " + (dir / "out").string());
+                         " --out " +
+                         (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(dir / "out" / "loop.json");
   const auto j = nlohmann::json::parse(in);
@@ -687,10 +721,11 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
       drifted.push_back(T);
     }
     vb::write_tum_poses((dir / "odo.tum").string(), stamps, drifted);
-    const auto o = run_cli("loop --sequence " + dir.string() + " --odometry poses --odometry-file " +
-                           (dir / "odo.tum").string() +
+    const auto o = run_cli("loop --sequence " + dir.string() +
+                           " --odometry poses --odometry-file " + (dir / "odo.tum").string() +
                            " --pipeline 2d --solvers clique --accept count --scan-spacing 2.9 "
-                           "--quiet --out " + (dir / "out_odo").string());
+                           "--quiet --out " +
+                           (dir / "out_odo").string());
     ASSERT_EQ(o.code, 0) << o.output;
     std::ifstream oin(dir / "out_odo" / "loop.json");
     const auto oj = nlohmann::json::parse(oin);
@@ -698,7 +733,8 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
     EXPECT_EQ(oj["parameters"]["loop"]["sequence_format"], "kitti");
     EXPECT_NE(oj["parameters"]["loop"]["reference"].get<std::string>().find("poses.txt"),
               std::string::npos);
-    const auto odo = vb::read_tum_poses((dir / "out_odo" / "trajectories" / "odometry.tum").string());
+    const auto odo =
+        vb::read_tum_poses((dir / "out_odo" / "trajectories" / "odometry.tum").string());
     ASSERT_EQ(odo.poses.size(), oj["trajectories"]["frames"].size());
     for (std::size_t k = 0; k < odo.poses.size(); ++k) {
       const int f = oj["trajectories"]["frames"][k].get<int>();
@@ -708,9 +744,9 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
     // A file one pose short, with no stamps to match by (KITTI), is refused naming it.
     std::vector<vb::Rigid<3>> short_poses(drifted.begin(), drifted.end() - 1);
     vb::write_kitti_poses((dir / "short.txt").string(), short_poses);
-    const auto bad = run_cli("loop --sequence " + dir.string() + " --odometry poses --odometry-file " +
-                             (dir / "short.txt").string() + " --quiet --out " +
-                             (dir / "out_short").string());
+    const auto bad =
+        run_cli("loop --sequence " + dir.string() + " --odometry poses --odometry-file " +
+                (dir / "short.txt").string() + " --quiet --out " + (dir / "out_short").string());
     EXPECT_EQ(bad.code, 2) << bad.output;
     EXPECT_NE(bad.output.find("short.txt: " + std::to_string(path.size() - 1) + " poses for " +
                               std::to_string(path.size()) + " scans"),
@@ -740,10 +776,11 @@ TEST(LoopCli, Kitti00ExcerptWithTwoRevisits) {
       << "Tr: 4.276802385584e-04 -9.999672484946e-01 -8.084491683471e-03 -1.198459927713e-02 "
          "-7.210626507497e-03 8.081198471645e-03 -9.999413164504e-01 -5.403984729748e-02 "
          "9.999738645903e-01 4.859485810390e-04 -7.206933692422e-03 -2.921968648686e-01\n";
-  const auto r = run_cli("loop --trajectory " + poses.string() + " --trajectory-frame camera --calib " +
-                         (dir / "calib.txt").string() +
+  const auto r = run_cli("loop --trajectory " + poses.string() +
+                         " --trajectory-frame camera --calib " + (dir / "calib.txt").string() +
                          " --last-frame 1700 --pipeline 2d --solvers clique,ransac --accept count"
-                         " --quiet --threads 2 --out " + (dir / "out").string());
+                         " --quiet --threads 2 --out " +
+                         (dir / "out").string());
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(dir / "out" / "loop.json");
   const auto j = nlohmann::json::parse(in);
@@ -776,11 +813,26 @@ TEST(LoopCli, HelpListsEveryFrontEndOptionOfExtractWithItsRange) {
     const auto at = line.find(", in [");
     return at == std::string::npos ? std::string() : line.substr(at, line.find(']', at) - at + 1);
   };
-  const std::vector<std::string> options = {
-      "pipeline", "voxel", "iss-salient-radius", "iss-non-max-radius", "iss-gamma",
-      "iss-min-neighbors", "normal-radius", "shot-radius", "cell", "min-occupancy", "range",
-      "orb-features", "fpfh-normal-radius", "fpfh-radius", "matching", "max-hamming",
-      "max-feature-distance", "max-matches", "exact-matching", "hbst-leaf"};
+  const std::vector<std::string> options = {"pipeline",
+                                            "voxel",
+                                            "iss-salient-radius",
+                                            "iss-non-max-radius",
+                                            "iss-gamma",
+                                            "iss-min-neighbors",
+                                            "normal-radius",
+                                            "shot-radius",
+                                            "cell",
+                                            "min-occupancy",
+                                            "range",
+                                            "orb-features",
+                                            "fpfh-normal-radius",
+                                            "fpfh-radius",
+                                            "matching",
+                                            "max-hamming",
+                                            "max-feature-distance",
+                                            "max-matches",
+                                            "exact-matching",
+                                            "hbst-leaf"};
   for (const std::string& option : options) {
     const std::string e = line_of(extract.output, option), l = line_of(loop.output, option);
     ASSERT_FALSE(e.empty()) << "extract --help lacks --" << option;
@@ -831,8 +883,9 @@ TEST(DenseCheck, IcpReturnsToTheDrawnMotionAndAnAliasOverlapsLittle) {
   vb::DenseCheckParams params;
   params.min_overlap = 0.4;
   vb::Rigid<3> near = T_match_query;
-  near.linear() = near.linear() * Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ())
-                                      .toRotationMatrix();
+  near.linear() =
+      near.linear() *
+      Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   near.translation() += Eigen::Vector3d(0.3, 0.2, 0.0);
   const vb::DenseCheck good = vb::dense_check(query, match, near, params);
   ASSERT_TRUE(good.icp.converged);

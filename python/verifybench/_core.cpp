@@ -22,6 +22,7 @@
 #include "acceptance/verify.hpp"
 #include "core/transform.hpp"
 #include "core/errors.hpp"
+#include "core/suggest.hpp"
 #include "datasets/dump_format.hpp"
 #include "generators/synthetic.hpp"
 #include "harness/builtin.hpp"
@@ -178,22 +179,6 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   return out;
 }
 
-/// Edit distance, for "did you mean" on an unknown keyword.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1] ? 1u : 0u)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 /// The solver settings given as keywords, read by the same rows as the CLI's options
 /// (solvers/params.hpp), onto a default SolverParams: the defaults are the CLI's.
 vb::SolverParams settings_from(const py::kwargs& given) {
@@ -205,12 +190,9 @@ vb::SolverParams settings_from(const py::kwargs& given) {
     std::size_t k = 0;
     while (k < rows.size() && rows[k].keyword() != key) ++k;
     if (k == rows.size()) {
-      std::string best;
-      std::size_t best_d = 4;
-      for (const auto& r : rows) {
-        const std::size_t d = edit_distance(key, r.keyword());
-        if (d < best_d) best_d = d, best = r.keyword();
-      }
+      std::vector<std::string> keywords;
+      for (const auto& r : rows) keywords.push_back(r.keyword());
+      const std::string best = vb::nearest_name(key, keywords);
       throw py::type_error("solve(): unknown setting '" + key + "'" +
                            (best.empty() ? "" : " (did you mean '" + best + "'?)") +
                            "; verifybench.settings() lists them");
