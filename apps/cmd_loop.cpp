@@ -2,6 +2,7 @@
 // KITTI-layout folder of scans; see loop/sequence.hpp.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #ifdef VERIFYBENCH_HAVE_LOOP
 #include "apps/param_options.hpp"
 #include "frontend/params.hpp"
+#include "generators/world.hpp"
 #include "harness/progress.hpp"
 #include "loop/loop_report.hpp"
 #endif
@@ -35,7 +37,8 @@ SolverParams loop_solver_defaults() {
 void add_loop_options(Options& o) {
   o.group("sequence")
       .add("trajectory", "FILE", "",
-           "KITTI poses (one row-major 3x4 a line): scans are simulated along it")
+           "KITTI poses (one row-major 3x4 a line): scans are simulated along it; `block` (no "
+           "such file): a 220 m x 140 m block driven twice, the data-free demo")
       .add("trajectory-frame", "F", "velodyne",
            "--trajectory's frame: velodyne, or camera (KITTI odometry's poses.txt; needs --calib)")
       .add("calib", "FILE", "", "KITTI calib.txt whose `Tr:` line maps Velodyne into camera")
@@ -190,7 +193,10 @@ LoopConfig loop_config(const Options& o) {
     if (o.given("reference") || o.given("sequence-format") || o.given("poses-file")) {
       throw UsageError("--reference, --sequence-format and --poses-file go with --sequence");
     }
-    poses = read_kitti_poses(o.text("trajectory"));
+    const std::string trajectory = o.text("trajectory");
+    poses = trajectory == "block" && !std::filesystem::exists(trajectory)
+                ? block_laps(220.0, 140.0, 2)  // every map of the second lap revisits the first
+                : read_kitti_poses(trajectory);
     std::string frame = o.text("trajectory-frame");
     if (frame == "camera") {
       if (!o.given("calib")) throw UsageError("--trajectory-frame camera needs --calib FILE");
