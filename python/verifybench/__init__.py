@@ -19,11 +19,16 @@ __all__ = ["InputError", "__version__", "generators", "git_commit", "load_report
            "settings", "solve", "solvers", "synthetic"]
 
 
-def load_report(path, table="results"):
-    """A verifybench JSON report (sweep, run, dimacs, merge) as a pandas DataFrame.
+LOOP_TABLES = ("closures", "summary", "maps", "candidates", "true_closures")
+REPORT_TABLES = ("results", "aggregates", "decisions")
 
-    table: "results" (one row per solver and set), "aggregates" or "decisions". The report's
-    context and parameters are kept in DataFrame.attrs.
+
+def load_report(path, table=None):
+    """A verifybench JSON report as a pandas DataFrame: sweep, run, dimacs and merge reports
+    (table "results", the default: one row per solver and set; "aggregates"; "decisions"), and
+    loop.json (table "closures", the default: one row per solver and candidate pair; "summary":
+    one row per solver; "maps"; "candidates"; "true_closures"). The report's context and
+    parameters are kept in DataFrame.attrs, with its kind ("loop" or "report").
     """
     import pandas as pd
 
@@ -31,12 +36,16 @@ def load_report(path, table="results"):
         report = json.load(f)
     if not isinstance(report, dict) or report.get("schema_version") != 1:
         raise InputError(f"{path}: field 'schema_version': not a verifybench report (version 1)")
-    if table not in ("results", "aggregates", "decisions"):
-        raise ValueError(f"table {table!r}: expected 'results', 'aggregates' or 'decisions'")
+    kind = "loop" if report.get("kind") == "loop" else "report"
+    tables = LOOP_TABLES if kind == "loop" else REPORT_TABLES
+    table = tables[0] if table is None else table
+    if table not in tables:
+        raise ValueError(f"table {table!r}: a {kind} has " + ", ".join(repr(t) for t in tables))
     rows = report.get(table, [])
     if not isinstance(rows, list):
         raise InputError(f"{path}: field {table!r}: not a list")
     frame = pd.json_normalize(rows) if rows else pd.DataFrame()
+    frame.attrs["kind"] = kind
     frame.attrs["context"] = report.get("context", {})
     frame.attrs["parameters"] = report.get("parameters", {})
     return frame

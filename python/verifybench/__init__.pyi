@@ -1,4 +1,4 @@
-from typing import Any
+from typing import Any, Optional
 
 import pandas
 
@@ -6,4 +6,4 @@ from ._core import (InputError as InputError, __version__ as __version__, genera
                     git_commit as git_commit, read_dump as read_dump, settings as settings,
                     solve as solve, solvers as solvers, synthetic as synthetic)
 
-def load_report(path: str, table: str = "results") -> pandas.DataFrame: ...
+def load_report(path: str, table: Optional[str] = None) -> pandas.DataFrame: ...

@@ -310,9 +310,50 @@ py::dict set_dict(const vb::LabeledSet<Dim>& s) {
   return out;
 }
 
+/// The generator's shape settings (generators/synthetic.hpp), as `sweep`'s options name them.
+struct Shape {
+  double group_ratio, grid_spacing, overlap, tail_dof, anisotropy, near_radius, cell,
+      score_separation;
+  bool planar_motion;
+  double prior_rot_deg, prior_trans;
+};
+
+template <int Dim>
+py::dict synthetic_dict(vb::LabeledSet<Dim> set, const Shape& shape, std::uint64_t seed) {
+  if (shape.prior_rot_deg > 0.0) {
+    vb::add_pose_prior(set, shape.prior_rot_deg * M_PI / 180.0, shape.prior_trans, seed);
+  }
+  py::dict out = set_dict<Dim>(set);
+  out["prior_T"] = set.corr.prior ? py::object(matrix<Dim>(set.corr.prior->T_target_source))
+                                  : py::object(py::none());
+  if (set.corr.prior) {
+    const auto& cov = set.corr.prior->covariance;
+    py::array_t<double> c({static_cast<py::ssize_t>(cov.rows()), static_cast<py::ssize_t>(cov.cols())});
+    for (Eigen::Index i = 0; i < cov.rows(); ++i)
+      for (Eigen::Index j = 0; j < cov.cols(); ++j) c.mutable_at(i, j) = cov(i, j);
+    out["prior_cov"] = c;
+  } else {
+    out["prior_cov"] = py::none();
+  }
+  return out;
+}
+
 py::dict synthetic(int n, double outliers, double noise, int dim, std::uint64_t seed,
-                   const std::string& kind, double extent, bool negative) {
+                   const std::string& kind, double extent, bool negative, const Shape& shape) {
+  if ((shape.prior_rot_deg > 0.0) != (shape.prior_trans > 0.0) || !(shape.prior_rot_deg >= 0.0) ||
+      !(shape.prior_trans >= 0.0)) {
+    throw std::invalid_argument("prior_rot_deg and prior_trans: both > 0 or both 0");
+  }
   vb::SyntheticParams p;
+  p.group_ratio = shape.group_ratio;
+  p.grid_spacing = shape.grid_spacing;
+  p.overlap = shape.overlap;
+  p.tail_dof = shape.tail_dof;
+  p.anisotropy = shape.anisotropy;
+  p.near_radius = shape.near_radius;
+  p.cell = shape.cell;
+  p.score_separation = shape.score_separation;
+  p.planar_motion = shape.planar_motion;
   p.n = n;
   p.outlier_ratio = outliers;
   p.noise = noise;
@@ -322,8 +363,8 @@ py::dict synthetic(int n, double outliers, double noise, int dim, std::uint64_t 
   p.max_translation = extent / 2;
   p.negative = negative;
   p.validate();
-  if (dim == 2) return set_dict<2>(vb::make_synthetic<2>(p));
-  if (dim == 3) return set_dict<3>(vb::make_synthetic<3>(p));
+  if (dim == 2) return synthetic_dict<2>(vb::make_synthetic<2>(p), shape, seed);
+  if (dim == 3) return synthetic_dict<3>(vb::make_synthetic<3>(p), shape, seed);
   throw std::invalid_argument("dim = " + std::to_string(dim) + ": 2 or 3 expected");
 }
 
@@ -369,10 +410,29 @@ PYBIND11_MODULE(_core, m) {
   m.def("settings", &settings_list,
         "Every setting solve() takes, as the CLI declares it: keyword, option, key, kind, default, "
         "min, max, help.");
-  m.def("synthetic", &synthetic, py::kw_only(), py::arg("n") = 500, py::arg("outliers") = 0.5,
-        py::arg("noise") = 0.01, py::arg("dim") = 3, py::arg("seed") = 1,
-        py::arg("kind") = "uniform", py::arg("extent") = 10.0, py::arg("negative") = false,
-        "A seeded synthetic set: dict of src, dst, labels (1 = inlier), T (the true motion), scores.");
+  m.def(
+      "synthetic",
+      [](int n, double outliers, double noise, int dim, std::uint64_t seed, const std::string& kind,
+         double extent, bool negative, double group_ratio, double grid_spacing, double overlap,
+         double tail_dof, double anisotropy, double near_radius, double cell,
+         double score_separation, bool planar_motion, double prior_rot_deg, double prior_trans) {
+        return synthetic(n, outliers, noise, dim, seed, kind, extent, negative,
+                         Shape{group_ratio, grid_spacing, overlap, tail_dof, anisotropy,
+                               near_radius, cell, score_separation, planar_motion, prior_rot_deg,
+                               prior_trans});
+      },
+      py::kw_only(), py::arg("n") = 500, py::arg("outliers") = 0.5, py::arg("noise") = 0.01,
+      py::arg("dim") = 3, py::arg("seed") = 1, py::arg("kind") = "uniform",
+      py::arg("extent") = 10.0, py::arg("negative") = false, py::arg("group_ratio") = 0.5,
+      py::arg("grid_spacing") = 2.0, py::arg("overlap") = 0.3, py::arg("tail_dof") = 3.0,
+      py::arg("anisotropy") = 5.0, py::arg("near_radius") = 1.0, py::arg("cell") = 0.5,
+      py::arg("score_separation") = 1.0, py::arg("planar_motion") = false,
+      py::arg("prior_rot_deg") = 0.0, py::arg("prior_trans") = 0.0,
+      "A seeded synthetic set, as `sweep` draws it (the same kind and shape settings): dict of src, "
+      "dst, labels (1 = inlier), T (the true motion), scores (None for score_separation < 0), "
+      "positive, and prior_T / prior_cov (a pose prior drawn around the truth with per-axis sigmas "
+      "prior_rot_deg [deg] and prior_trans [m], as sweep's --prior-rot-deg / --prior-trans; None "
+      "without).");
   m.def("read_dump", &read_dump, py::arg("path"),
         "A correspondence dump folder (dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt]).");
 }

@@ -33,5 +33,16 @@ def synthetic(
     kind: str = "uniform",
     extent: float = 10.0,
     negative: bool = False,
+    group_ratio: float = 0.5,
+    grid_spacing: float = 2.0,
+    overlap: float = 0.3,
+    tail_dof: float = 3.0,
+    anisotropy: float = 5.0,
+    near_radius: float = 1.0,
+    cell: float = 0.5,
+    score_separation: float = 1.0,
+    planar_motion: bool = False,
+    prior_rot_deg: float = 0.0,
+    prior_trans: float = 0.0,
 ) -> Dict[str, Any]: ...
 def read_dump(path: str) -> Dict[str, Any]: ...

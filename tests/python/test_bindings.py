@@ -191,6 +191,54 @@ def test_dump_and_report_readers(tmp_path):
         vb.load_report(str(tmp_path / "x.json"))
 
 
+def test_load_report_reads_a_loop_report(tmp_path):
+    # A loop.json in the layout of reports/schema/loop.schema.json, written here: 3 closures of
+    # 2 solvers, 2 summary rows, 4 maps.
+    doc = {"schema_version": 1, "kind": "loop", "context": {"seed": 7}, "parameters": {"loop": {}},
+           "maps": [{"frames": [0, 1]}, {"frames": [2]}, {"frames": [3]}, {"frames": [4]}],
+           "true_closures": [[3, 0]], "candidates": [{"query": 3, "match": 0, "votes": 9}],
+           "closures": [{"solver": "clique", "query": 3, "match": 0, "accepted": True, "correct": True},
+                        {"solver": "ransac", "query": 3, "match": 0, "accepted": False, "correct": False},
+                        {"solver": "ransac", "query": 3, "match": 1, "accepted": True, "correct": False}],
+           "summary": [{"solver": "clique", "tp": 1, "fp": 0, "pose_graph": {"iterations": 4}},
+                       {"solver": "ransac", "tp": 0, "fp": 1, "pose_graph": {"iterations": 5}}]}
+    path = tmp_path / "loop.json"
+    path.write_text(json.dumps(doc))
+    closures = vb.load_report(str(path))
+    assert len(closures) == 3 and list(closures["solver"]) == ["clique", "ransac", "ransac"]
+    assert closures["accepted"].sum() == 2 and closures.attrs["kind"] == "loop"
+    assert closures.attrs["context"]["seed"] == 7
+    summary = vb.load_report(str(path), table="summary")
+    assert list(summary["tp"]) == [1, 0] and list(summary["pose_graph.iterations"]) == [4, 5]
+    assert len(vb.load_report(str(path), table="maps")) == 4
+    with pytest.raises(ValueError, match="a loop has 'closures'"):
+        vb.load_report(str(path), table="results")
+
+
+def test_synthetic_takes_the_generators_shape_and_a_prior():
+    # planar_motion: the true rotation's z axis is e_z; without it, tilted.
+    flat = vb.synthetic(n=100, dim=3, seed=4, planar_motion=True)
+    assert np.allclose(np.asarray(flat["T"])[:3, 2], [0, 0, 1], atol=1e-12)
+    assert not np.allclose(np.asarray(vb.synthetic(n=100, dim=3, seed=4)["T"])[:3, 2], [0, 0, 1], atol=1e-3)
+    # score_separation < 0: no scores; a separation of 5: inliers score higher on average by ~5.
+    assert vb.synthetic(n=100, seed=4, score_separation=-1)["scores"] is None
+    s = vb.synthetic(n=2000, outliers=0.5, seed=4, score_separation=5.0)
+    labels, scores = np.asarray(s["labels"]).astype(bool), np.asarray(s["scores"])
+    assert abs(scores[labels].mean() - scores[~labels].mean() - 5.0) < 0.2
+    # A prior around the truth with the stated sigmas: present, near T, a 6 x 6 covariance with
+    # (1 deg)^2 and (0.3 m)^2 on its diagonal.
+    p = vb.synthetic(n=100, seed=4, prior_rot_deg=1.0, prior_trans=0.3)
+    assert p["prior_T"] is not None and np.asarray(p["prior_cov"]).shape == (6, 6)
+    diag = np.diag(np.asarray(p["prior_cov"]))
+    assert np.allclose(sorted(diag), sorted([np.radians(1.0) ** 2] * 3 + [0.09] * 3))
+    assert np.linalg.norm(np.asarray(p["prior_T"])[:3, 3] - np.asarray(p["T"])[:3, 3]) < 3.0
+    assert vb.synthetic(n=100, seed=4)["prior_T"] is None
+    with pytest.raises(ValueError, match="both > 0 or both 0"):
+        vb.synthetic(prior_rot_deg=1.0)
+    with pytest.raises(ValueError, match="group_ratio"):
+        vb.synthetic(kind="rigid-group", group_ratio=-1.0)
+
+
 def cli_defaults():
     """Each option's default as `verifybench sweep --help` prints it: {"--eps": "0.1", ...}."""
     cli = os.environ.get("VERIFYBENCH_CLI")
