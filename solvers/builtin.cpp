@@ -11,6 +11,11 @@ void register_jcbb_solver();
 void register_gnc_tls_solver();
 void register_teaser_solver();
 void register_sc2pcr_solver();
+void register_robin_gnc_solver();
+void register_quatro_solver();
+void register_turboreg_solver();
+void register_clipper_solver();
+void register_fastmac_solver();
 
 void register_solvers() {
   static std::once_flag once;
@@ -22,6 +27,11 @@ void register_solvers() {
     register_gnc_tls_solver();
     register_teaser_solver();
     register_sc2pcr_solver();
+    register_robin_gnc_solver();
+    register_quatro_solver();
+    register_turboreg_solver();
+    register_clipper_solver();
+    register_fastmac_solver();
   });
 }
 

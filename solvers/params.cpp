@@ -12,11 +12,17 @@ const ParamFamily& jcbb_param_family();    // jcbb_solver.cpp
 const ParamFamily& gnc_param_family();     // gnc_tls_solver.cpp
 const ParamFamily& teaser_param_family();  // teaser_solver.cpp
 const ParamFamily& sc2_param_family();     // sc2pcr_solver.cpp
+const ParamFamily& robin_param_family();     // robin_gnc_solver.cpp
+const ParamFamily& quatro_param_family();    // quatro_solver.cpp
+const ParamFamily& turboreg_param_family();  // turboreg_solver.cpp
+const ParamFamily& clipper_param_family();   // clipper_solver.cpp
+const ParamFamily& fastmac_param_family();   // fastmac_solver.cpp
 
 const std::vector<ParamFamily>& param_families() {
-  static const std::vector<ParamFamily> families = {ransac_param_family(), mac_param_family(),
-                                                    jcbb_param_family(),   gnc_param_family(),
-                                                    teaser_param_family(), sc2_param_family()};
+  static const std::vector<ParamFamily> families = {
+      ransac_param_family(),   mac_param_family(),     jcbb_param_family(),   gnc_param_family(),
+      teaser_param_family(),   sc2_param_family(),     robin_param_family(),  quatro_param_family(),
+      turboreg_param_family(), clipper_param_family(), fastmac_param_family()};
   return families;
 }
 

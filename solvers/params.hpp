@@ -9,6 +9,11 @@
 #include <vector>
 
 #include "core/param_rows.hpp"
+#include "solvers/robin_gnc_params.hpp"
+#include "solvers/quatro_params.hpp"
+#include "solvers/turboreg_params.hpp"
+#include "solvers/clipper_params.hpp"
+#include "solvers/fastmac_params.hpp"
 
 namespace verifybench {
 
@@ -87,6 +92,11 @@ struct SolverParams {
   GncParams gnc;
   TeaserParams teaser;
   Sc2Params sc2;
+  RobinParams robin;
+  QuatroParams quatro;
+  TurboRegParams turboreg;
+  ClipperParams clipper;
+  FastMacParams fastmac;
   AcceptParams accept;
 
   /// Throws std::invalid_argument naming the field and the bad value.

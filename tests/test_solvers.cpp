@@ -4,14 +4,14 @@
 #include <limits>
 #include <tuple>
 
+#include "acceptance/verify.hpp"
 #include "cliques/max_clique.hpp"
 #include "core/metrics.hpp"
+#include "core/timer.hpp"
 #include "generators/synthetic.hpp"
 #include "graph/compatibility_graph.hpp"
 #include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
-#include "acceptance/verify.hpp"
-#include "core/timer.hpp"
 
 namespace verifybench {
 namespace {
@@ -28,9 +28,10 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     EXPECT_FALSE(info.description.empty());
   }
   // clique (the default algorithm), one clique-<algorithm> per registered algorithm, ransac.
-  std::vector<std::string> expected{"clique", "gnc-tls", "jcbb",   "lo-ransac",       "mac",
-                                    "msac",   "prosac",  "ransac", "ransac-adaptive", "sc2-pcr",
-                                    "teaser"};
+  std::vector<std::string> expected{"clique",    "clipper",   "fastmac", "gnc-tls",
+                                    "jcbb",      "lo-ransac", "mac",     "msac",
+                                    "prosac",    "quatro",    "ransac",  "ransac-adaptive",
+                                    "robin-gnc", "sc2-pcr",   "teaser",  "turboreg"};
   if (VB_BUILT_OPEN3D) expected.insert(expected.end(), {"open3d-ransac", "open3d-ransac-default"});
   if (VB_BUILT_PCL) {
     expected.insert(expected.end(), {"pcl-prerejective", "pcl-prerejective-default", "pcl-ransac",
@@ -46,7 +47,8 @@ TEST_F(Registered, ListsBuiltinsAndRefusesUnknownNames) {
     FAIL();
   } catch (const UnknownSolver& e) {
     EXPECT_NE(std::string(e.what()).find("ransack"), std::string::npos);
-    EXPECT_NE(std::string(e.what()).find("clique, clique-auto, clique-bbmc"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("clique, clique-auto, clique-bbmc"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(SolverRegistry::add({"clique", "again", nullptr}), std::logic_error);
 }
@@ -66,6 +68,7 @@ void expect_recovery(const std::string& name) {
     p.n = 200;
     p.outlier_ratio = 0.5;
     p.seed = seed;
+    p.planar_motion = name == "quatro";  // quasi-SO(3): defined for yaw-only motions
     const auto set = make_synthetic<Dim>(p);
     SolverParams sp;
     sp.seed = seed;
@@ -80,9 +83,9 @@ void expect_recovery(const std::string& name) {
   }
 }
 
-// The peers' "-default" entries run the libraries' own defaults (Open3D's 100,000 iterations with no
-// checker, PCL's prerejective similarity 0.6), kept to show what a user gets out of the box; they
-// need not recover here, but must answer without an error.
+// The peers' "-default" entries run the libraries' own defaults (Open3D's 100,000 iterations with
+// no checker, PCL's prerejective similarity 0.6), kept to show what a user gets out of the box;
+// they need not recover here, but must answer without an error.
 template <int Dim>
 void expect_an_answer(const std::string& name) {
   SyntheticParams p;
