@@ -61,6 +61,30 @@ void read_rows(const Options& o, const std::vector<ParamRow<P>>& rows, P& p) {
   }
 }
 
+/// The rows as markdown table lines, one per option: `| \`--option V\` | default | what (range) |`,
+/// the default read from `defaults` as --help shows it ("off" for a flag); README's option tables
+/// are these lines (`verifybench list --settings-md`, checked by a test), so they cannot drift.
+template <class P>
+std::string rows_markdown(const std::vector<ParamRow<P>>& rows, const P& defaults) {
+  using Kind = typename ParamRow<P>::Kind;
+  std::string out;
+  for (const auto& r : rows) {
+    const bool flag = r.kind == Kind::flag;
+    std::string what = r.help;
+    if (!r.expected.empty()) {
+      what += ": " + r.expected;
+    } else if (!r.range().empty()) {
+      what += ", in " + r.range();
+    }
+    std::string cell;
+    for (char c : what) cell += c == '|' ? std::string("\\|") : std::string(1, c);
+    const std::string value = flag ? "off" : r.text(defaults);
+    out += "| `--" + r.option + (flag ? "" : " " + r.value_name) + "` | " +
+           (value.empty() ? "-" : value) + " | " + cell + " |\n";
+  }
+  return out;
+}
+
 /// {key: value} of every row (an infinite real as null, a flag as a bool).
 template <class P>
 nlohmann::json rows_json(const std::vector<ParamRow<P>>& rows, const P& p) {
