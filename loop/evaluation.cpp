@@ -4,17 +4,9 @@
 #include <cmath>
 #include <functional>
 
-namespace verifybench {
+#include "loop/backend.hpp"
 
-Eigen::Matrix<double, 6, 1> odometry_sigma(const DriftParams& d, double length) {
-  const double deg = M_PI / 180.0, L = std::max(length, 1.0);
-  const double yaw = std::max(d.yaw_deg * deg * std::sqrt(L), 1e-4);
-  const double tilt = std::max(d.tilt_deg * deg * std::sqrt(L), 1e-4);
-  const double trans = std::max(std::hypot(d.trans_rel * L, yaw * L / std::sqrt(3.0)), 0.05);
-  Eigen::Matrix<double, 6, 1> s;
-  s << tilt, tilt, yaw, trans, trans, trans;
-  return s;
-}
+namespace verifybench {
 
 namespace {
 
@@ -28,10 +20,61 @@ ClosureScore score_at(const std::vector<const ClosureRow*>& rows, int positives,
   return score_closures(accepted, correct, positives);
 }
 
+std::vector<const ClosureRow*> rows_of(const LoopRun& run, const std::string& solver) {
+  std::vector<const ClosureRow*> rows;
+  for (const ClosureRow& r : run.rows) {
+    if (r.record.solver == solver) rows.push_back(&r);
+  }
+  return rows;
+}
+
 }  // namespace
 
-void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& maps, LoopRun& run) {
+void score_solvers(const LoopConfig& config, LoopRun& run) {
   const int positives = static_cast<int>(run.true_closures.size());
+  for (const std::string& name : config.solvers) {
+    SolverSummary sum;
+    sum.solver = name;
+    const std::vector<const ClosureRow*> rows = rows_of(run, name);
+    sum.score = score_at(rows, positives, [](const ClosureRow& r) { return r.record.accepted; });
+    int max_inliers = 0;
+    bool has_p = false;
+    for (const ClosureRow* r : rows) {
+      sum.inliers_mean += r->record.inliers;
+      sum.time_ms_mean += r->record.time_ms;
+      sum.calibration_ms_mean += r->record.calibration_ms;
+      max_inliers = std::max(max_inliers, r->record.inliers);
+      has_p = has_p || std::isfinite(r->record.p_value);
+      if (r->record.accepted) ++sum.accepted;
+    }
+    if (!rows.empty()) {
+      sum.inliers_mean /= static_cast<double>(rows.size());
+      sum.time_ms_mean /= static_cast<double>(rows.size());
+      sum.calibration_ms_mean /= static_cast<double>(rows.size());
+    }
+    for (int K = 1; K <= max_inliers + 1; ++K) {
+      const ClosureScore s =
+          score_at(rows, positives, [K](const ClosureRow& r) { return r.record.inliers >= K; });
+      sum.count_curve.push_back({static_cast<double>(K), s});
+      if (s.fp == 0 && s.tp > 0) {
+        sum.max_recall_full_precision = std::max(sum.max_recall_full_precision, s.recall);
+      }
+    }
+    if (has_p) {
+      for (int e = 1; e <= 12; ++e) {
+        const double alpha = std::pow(10.0, -e);
+        sum.alpha_curve.push_back({alpha, score_at(rows, positives, [alpha](const ClosureRow& r) {
+                                     return std::isfinite(r.record.p_value) &&
+                                            r.record.p_value < alpha;
+                                   })});
+      }
+    }
+    run.summary.push_back(std::move(sum));
+  }
+}
+
+void optimise_pose_graphs(const LoopConfig& config, const std::vector<LocalMap>& maps,
+                          LoopRun& run) {
   std::vector<Rigid<3>> anchors_odo;
   for (const LocalMap& m : maps) anchors_odo.push_back(m.T_world_map_odometry);
   std::vector<PoseEdge> odometry_edges;
@@ -57,27 +100,13 @@ void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& ma
     }
     return out;
   };
-  run.ape_without = absolute_pose_error(run.odometry, run.truth);
+  const BackendInfo& plain_backend = find_backend("plain");
+  const BackendInfo& robust_backend = find_backend("robust");
   const double deg = M_PI / 180.0;
-  for (const std::string& name : config.solvers) {
-    SolverSummary sum;
-    sum.solver = name;
-    std::vector<const ClosureRow*> rows;
-    for (const ClosureRow& r : run.rows) {
-      if (r.record.solver == name) rows.push_back(&r);
-    }
-    sum.score = score_at(rows, positives, [](const ClosureRow& r) { return r.record.accepted; });
-    int max_inliers = 0;
-    bool has_p = false;
+  for (SolverSummary& sum : run.summary) {
     std::vector<PoseEdge> edges = odometry_edges;
-    for (const ClosureRow* r : rows) {
-      sum.inliers_mean += r->record.inliers;
-      sum.time_ms_mean += r->record.time_ms;
-      sum.calibration_ms_mean += r->record.calibration_ms;
-      max_inliers = std::max(max_inliers, r->record.inliers);
-      has_p = has_p || std::isfinite(r->record.p_value);
+    for (const ClosureRow* r : rows_of(run, sum.solver)) {
       if (!r->record.accepted) continue;
-      ++sum.accepted;
       PoseEdge e;
       e.from = r->match;
       e.to = r->query;
@@ -91,43 +120,30 @@ void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& ma
       }
       edges.push_back(e);
     }
-    if (!rows.empty()) {
-      sum.inliers_mean /= static_cast<double>(rows.size());
-      sum.time_ms_mean /= static_cast<double>(rows.size());
-      sum.calibration_ms_mean /= static_cast<double>(rows.size());
-    }
-    for (int K = 1; K <= max_inliers + 1; ++K) {
-      const ClosureScore s =
-          score_at(rows, positives, [K](const ClosureRow& r) { return r.record.inliers >= K; });
-      sum.count_curve.push_back({static_cast<double>(K), s});
-      if (s.fp == 0 && s.tp > 0) {
-        sum.max_recall_full_precision = std::max(sum.max_recall_full_precision, s.recall);
-      }
-    }
-    if (has_p) {
-      for (int e = 1; e <= 12; ++e) {
-        const double alpha = std::pow(10.0, -e);
-        sum.alpha_curve.push_back(
-            {alpha, score_at(rows, positives, [alpha](const ClosureRow& r) {
-               return std::isfinite(r.record.p_value) && r.record.p_value < alpha;
-             })});
-      }
-    }
     sum.loop_edges = static_cast<int>(edges.size() - odometry_edges.size());
-    PoseGraphParams gp;
-    const PoseGraphResult plain = optimise_pose_graph(anchors_odo, edges, gp);
-    gp.robust = true;
-    const PoseGraphResult robust = optimise_pose_graph(anchors_odo, edges, gp);
+    const PoseGraphResult plain = plain_backend.solve(anchors_odo, edges);
+    const PoseGraphResult robust = robust_backend.solve(anchors_odo, edges);
     sum.graph_iterations = plain.iterations;
     sum.graph_iterations_robust = robust.iterations;
     sum.graph_converged = plain.converged;
     sum.graph_converged_robust = robust.converged;
     sum.poses_with = scan_poses(plain.poses);
     sum.poses_with_robust = scan_poses(robust.poses);
+  }
+}
+
+void trajectory_errors(LoopRun& run) {
+  run.ape_without = absolute_pose_error(run.odometry, run.truth);
+  for (SolverSummary& sum : run.summary) {
     sum.ape_with = absolute_pose_error(sum.poses_with, run.truth);
     sum.ape_with_robust = absolute_pose_error(sum.poses_with_robust, run.truth);
-    run.summary.push_back(std::move(sum));
   }
+}
+
+void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& maps, LoopRun& run) {
+  score_solvers(config, run);
+  optimise_pose_graphs(config, maps, run);
+  trajectory_errors(run);
 }
 
 }  // namespace verifybench

@@ -68,9 +68,10 @@ void make_folder(const std::string& dir) {
     }
     return;
   }
-  if (::mkdir(dir.c_str(), 0755) != 0) {
-    throw std::runtime_error("cannot create " + dir + ": " + std::strerror(errno));
-  }
+  // Missing parents are made too (--out out/k00 in a fresh checkout), as mkdir -p does.
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create " + dir + ": " + ec.message());
 }
 
 }  // namespace

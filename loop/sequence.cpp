@@ -1,7 +1,5 @@
 #include "loop/sequence.hpp"
 
-#include "loop/evaluation.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +15,8 @@
 #include "core/timer.hpp"
 #include "frontend/cloud_io.hpp"
 #include "harness/harness.hpp"
+#include "loop/evaluation.hpp"
+#include "loop/odometry.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
@@ -33,7 +33,8 @@ void attach_odometry_prior(Dump& dump, const std::vector<LocalMap>& maps, const 
   double travel = 0.0;
   for (int k = std::min(c.query, c.match); k < std::max(c.query, c.match); ++k) {
     travel += (maps[k + 1].T_world_map_odometry.translation() -
-               maps[k].T_world_map_odometry.translation()).norm();
+               maps[k].T_world_map_odometry.translation())
+                  .norm();
   }
   const Eigen::Matrix<double, 6, 1> sigma = odometry_sigma(drift, travel);
   std::visit(
@@ -80,20 +81,13 @@ void LoopConfig::validate() const {
     throw std::invalid_argument("loop: unknown pipeline '" + extract.pipeline + "'");
   }
   if (solvers.empty()) throw std::invalid_argument("loop: no solver");
-  if (odometry != "drift" && odometry != "gicp" && odometry != "poses" && odometry != "log") {
-    throw std::invalid_argument("loop: odometry '" + odometry +
-                                "' is not drift, gicp, poses or log");
-  }
-  if ((odometry == "poses" || odometry == "log") && odometry_poses.size() != truth.size()) {
-    throw std::invalid_argument("loop: odometry " + odometry + " has " +
-                                std::to_string(odometry_poses.size()) + " poses for " +
-                                std::to_string(truth.size()) + " frames");
-  }
+  // The odometry kind by name (UnknownName lists the kinds), then its own fields.
+  const OdometryInfo& odometry_kind = find_odometry(odometry);
+  if (odometry_kind.validate) odometry_kind.validate(*this);
   if (!stamps.empty() && stamps.size() != truth.size()) {
     throw std::invalid_argument("loop: " + std::to_string(stamps.size()) + " stamps for " +
                                 std::to_string(truth.size()) + " frames");
   }
-  if (odometry == "gicp") gicp.validate();
   SolverRegistry::check(solvers);
   maps.validate();
   retrieval.validate();
@@ -141,8 +135,9 @@ std::vector<TrueClosure> true_closures(const std::vector<LocalMap>& maps, int mi
   std::vector<TrueClosure> out;
   for (std::size_t q = 0; q < maps.size(); ++q) {
     for (std::size_t m = 0; m + min_map_gap <= q; ++m) {
-      const double d = (maps[q].T_world_map_truth.translation() -
-                        maps[m].T_world_map_truth.translation()).norm();
+      const double d =
+          (maps[q].T_world_map_truth.translation() - maps[m].T_world_map_truth.translation())
+              .norm();
       if (d >= max_distance) continue;
       const double overlap = overlap_ratio(maps[q].occupancy, maps[m].occupancy);
       if (overlap > min_overlap) {
@@ -153,68 +148,90 @@ std::vector<TrueClosure> true_closures(const std::vector<LocalMap>& maps, int mi
   return out;
 }
 
-LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
-  config.validate();
-  auto report = [&](const std::string& stage, long long done, long long total) {
+namespace {
+
+// The stages of run_loop, in its order. Each fills its part of the run and its timing.
+
+/// The progress callback, or nothing.
+struct Progress {
+  const LoopProgress& progress;
+  void operator()(const std::string& stage, long long done, long long total) const {
     if (progress) progress(stage, done, total);
-  };
-  StopWatch total_clock;
-  LoopRun run;
-  const Trajectory& truth = config.truth;
-  run.frames = select_frames(truth, config.scan_spacing);
-  if (run.frames.size() < 3) {
-    throw std::invalid_argument("loop: " + std::to_string(run.frames.size()) +
+  }
+};
+
+/// Sources: the scans used, one every scan_spacing metres of true travel (select_frames), from the
+/// recorded sequence (config.source, loop/sources/) or ray-cast by the simulated LiDAR in a seeded
+/// street world along the true trajectory (generators/world.hpp, generators/lidar.hpp).
+struct Scans {
+  std::unique_ptr<LidarSimulator> lidar;  ///< null when read
+  ScanSource scan;                        ///< trajectory frame -> points, sensor frame
+};
+
+std::vector<int> scans_used(const LoopConfig& config) {
+  std::vector<int> frames = select_frames(config.truth, config.scan_spacing);
+  if (frames.size() < 3) {
+    throw std::invalid_argument("loop: " + std::to_string(frames.size()) +
                                 " scans at this spacing (at least 3)");
   }
+  return frames;
+}
 
-  // Scans: simulated or read.
+Scans open_scans(const LoopConfig& config, LoopRun& run) {
   StopWatch clock;
-  std::unique_ptr<LidarSimulator> lidar;
+  Scans scans;
   if (!config.source) {
     WorldParams wp = config.world;
     wp.seed = derive_seed(config.seed, {1});
-    const World world = build_street_world(truth, wp);
+    const World world = build_street_world(config.truth, wp);
     run.world = world.counts;
-    lidar = std::make_unique<LidarSimulator>(world.mesh);
+    scans.lidar = std::make_unique<LidarSimulator>(world.mesh);
   }
   run.seconds["world_s"] = clock.ms() / 1000.0;
-  const ScanSource scans = [&](int frame) -> std::vector<Eigen::Vector3f> {
+  const LidarSimulator* lidar = scans.lidar.get();
+  scans.scan = [lidar, &config](int frame) -> std::vector<Eigen::Vector3f> {
     if (lidar) {
-      return lidar->scan(truth[frame], config.lidar,
+      return lidar->scan(config.truth[frame], config.lidar,
                          derive_seed(config.seed, {2, static_cast<std::uint64_t>(frame)}));
     }
     return config.source->points(config.first_frame + frame);
   };
+  return scans;
+}
 
-  // Odometry: the drift model, or GICP from scan to scan (sequential: each step starts from the
-  // last). Only the frames used are filled in.
-  clock = StopWatch();
-  Trajectory odometry_all;
-  if (config.odometry == "gicp") {
-    odometry_all.assign(truth.size(), Rigid<3>::Identity());
-    const int n = static_cast<int>(run.frames.size());
-    long long steps = 0;
-    const auto poses = gicp_odometry([&](int k) { return scans(run.frames[k]); }, n,
-                                     truth[run.frames[0]], config.gicp,
-                                     [&] { report("odometry", ++steps, n - 1); });
-    for (int k = 0; k < n; ++k) odometry_all[run.frames[k]] = poses[k];
-  } else if (config.odometry == "poses" || config.odometry == "log") {
-    odometry_all = config.odometry_poses;
-  } else {
-    odometry_all = drift_odometry(truth, config.drift, derive_seed(config.seed, {3}));
-  }
+/// Odometry: the kind config.odometry names (loop/odometry.hpp: drift, gicp, poses, log), for
+/// every frame; run.truth and run.odometry keep the frames used.
+Trajectory run_odometry(const LoopConfig& config, const ScanSource& scans, const Progress& report,
+                        LoopRun& run) {
+  StopWatch clock;
+  const OdometryInfo& kind = find_odometry(config.odometry);
+  const Trajectory odometry_all =
+      kind.run({config, run.frames, scans,
+                [&](long long done, long long total) { report("odometry", done, total); }});
   for (int f : run.frames) {
-    run.truth.push_back(truth[f]);
+    run.truth.push_back(config.truth[f]);
     run.odometry.push_back(odometry_all[f]);
   }
   run.seconds["odometry_s"] = clock.ms() / 1000.0;
+  return odometry_all;
+}
 
-  // Local maps and their features, in parallel over maps (each map's work is its own).
-  clock = StopWatch();
+/// Local maps (loop/local_maps.hpp: every map_length metres of odometry travel, in the frame of
+/// their middle scan) and the front end's features of each (frontend/extract.hpp: 3d ISS + B-SHOT,
+/// 2d BEV + ORB, ...), in parallel over maps (each map's work is its own); run.maps describes them.
+struct MapsAndFeatures {
+  std::vector<LocalMap> maps;
+  std::vector<Features> features;
+};
+
+MapsAndFeatures build_maps(const LoopConfig& config, const Trajectory& odometry_all,
+                           const ScanSource& scans, const Progress& report, LoopRun& run) {
+  StopWatch clock;
   const auto groups = partition_maps(odometry_all, run.frames, config.maps.map_length);
   const int n_maps = static_cast<int>(groups.size());
-  std::vector<LocalMap> maps(n_maps);
-  std::vector<Features> features(n_maps);
+  MapsAndFeatures out;
+  out.maps.resize(n_maps);
+  out.features.resize(n_maps);
   std::vector<double> feature_ms(n_maps, 0.0), map_ms(n_maps, 0.0);
   {
     WorkerPool pool(config.threads);
@@ -222,10 +239,10 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
     long long done = 0;
     pool.parallel_for(n_maps, [&](int k) {
       StopWatch c;
-      maps[k] = build_local_map(k, groups[k], odometry_all, truth, scans, config.maps);
+      out.maps[k] = build_local_map(k, groups[k], odometry_all, config.truth, scans, config.maps);
       map_ms[k] = c.ms();
       c = StopWatch();
-      features[k] = extract_features(maps[k].points, config.extract);
+      out.features[k] = extract_features(out.maps[k].points, config.extract);
       feature_ms[k] = c.ms();
       std::lock_guard<std::mutex> lock(mutex);
       report("maps", ++done, n_maps);
@@ -234,7 +251,7 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
   run.seconds["maps_s"] = std::accumulate(map_ms.begin(), map_ms.end(), 0.0) / 1000.0;
   run.seconds["features_s"] = std::accumulate(feature_ms.begin(), feature_ms.end(), 0.0) / 1000.0;
   run.seconds["maps_wall_s"] = clock.ms() / 1000.0;
-  for (const LocalMap& m : maps) {
+  for (const LocalMap& m : out.maps) {
     MapInfo info;
     info.index = m.index;
     info.first_frame = m.frames.front();
@@ -242,46 +259,115 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
     info.anchor = m.anchor;
     info.scans = static_cast<int>(m.frames.size());
     info.points = static_cast<int>(m.points.size());
-    info.keypoints = static_cast<int>(features[m.index].points.size());
+    info.keypoints = static_cast<int>(out.features[m.index].points.size());
     info.occupied_cells = static_cast<int>(m.occupancy.size());
     info.position_truth = m.T_world_map_truth.translation();
     run.maps.push_back(info);
   }
+  return out;
+}
 
-  // Ground truth and retrieval.
-  clock = StopWatch();
-  run.true_closures = true_closures(maps, config.retrieval.min_map_gap, config.gt_max_distance,
+/// Ground truth (true_closures: pairs at least min_map_gap apart, true anchors within
+/// gt_max_distance, occupancies overlapping by more than gt_overlap), then retrieval
+/// (loop/retrieval.hpp: the candidate pairs, by the registry's retriever).
+void truth_and_retrieval(const LoopConfig& config, const MapsAndFeatures& mf, LoopRun& run) {
+  StopWatch clock;
+  run.true_closures = true_closures(mf.maps, config.retrieval.min_map_gap, config.gt_max_distance,
                                     config.gt_overlap);
   RetrievalParams rp = config.retrieval;
   rp.max_hamming = config.extract.max_hamming;
   rp.max_feature_distance = config.extract.max_feature_distance;
-  run.candidates = retrieve_candidates(features, rp);
+  run.candidates = retrieve_candidates(mf.features, rp);
   run.seconds["retrieval_s"] = clock.ms() / 1000.0;
+}
 
-  // Verification: every solver on every candidate pair.
-  clock = StopWatch();
+/// Verification, one pair: the matcher's correspondences of its features (seeded by the pair), the
+/// ground truth marked on them, and odometry's prior when --odometry-prior.
+Dump pair_correspondences(const LoopConfig& config, const MapsAndFeatures& mf, const Candidate& c,
+                          const Rigid<3>& T_truth) {
+  ExtractParams ep = config.extract;
+  ep.seed = derive_seed(
+      config.seed, {4, static_cast<std::uint64_t>(c.query), static_cast<std::uint64_t>(c.match)});
+  Dump dump = match_features(mf.features[c.query], mf.features[c.match], T_truth, ep);
+  if (config.odometry_prior) attach_odometry_prior(dump, mf.maps, c, config.drift);
+  return dump;
+}
+
+/// Verification, one solver on one pair's correspondences: the harness's row (verify, then
+/// trial_record) and the solver's motion lifted to SE(3); no correspondence is a rejection.
+void solve_pair(Solver& solver, const std::string& name, Dump& dump, bool is_true,
+                const SolverParams& sp, ClosureRow& row) {
+  std::visit(
+      [&](auto& set) {
+        constexpr int Dim = std::decay_t<decltype(set.corr.source)>::RowsAtCompileTime;
+        set.truth.positive = is_true;
+        if (set.corr.empty()) {
+          row.record.solver = name;
+          row.record.dim = Dim;
+          row.record.status = "rejected";
+          row.record.message = "no correspondence";
+          return;
+        }
+        const Verification<Dim> v = verify(solver, set.corr, sp);
+        row.record = trial_record(v, name, set, sp, SuccessCriteria{});
+        if constexpr (Dim == 2) {
+          row.T_estimate = lift_planar(v.result.T_target_source);
+        } else {
+          row.T_estimate = v.result.T_target_source;
+        }
+      },
+      dump.set);
+}
+
+/// Verification, after the accept rule: the dense check (loop/dense_check.hpp, when on) may
+/// overrule it; the solver's errors against the truth; the motion the loop goes on with; and
+/// whether the closure is correct (a true closure within pose_tolerance).
+void judge_row(const LoopConfig& config, const LocalMap& q, const LocalMap& m, bool is_true,
+               ClosureRow& row) {
+  row.rule_accepted = row.record.accepted;
+  if (config.dense.min_overlap > 0.0 && !row.record.T_target_source.empty()) {
+    row.dense = dense_check(q, m, row.T_estimate, config.dense);
+    if (row.record.accepted && !(row.dense.overlap > config.dense.min_overlap)) {
+      row.record.accepted = false;
+      row.record.message = "dense check: overlap " + std::to_string(row.dense.overlap) +
+                           " after ICP, not above " + std::to_string(config.dense.min_overlap);
+    }
+  }
+  row.translation_error = (row.T_estimate.translation() - row.T_truth.translation()).norm();
+  row.rotation_error_deg = rotation_error_deg<3>(row.T_estimate, row.T_truth);
+  if (row.dense.ran) {
+    // The loop goes on with the refined motion (as KISS-SLAM does): it is the one judged and
+    // put in the pose graph; the solver's own errors stay in the row.
+    row.T_solver = row.T_estimate;
+    row.T_estimate = row.dense.icp.T_target_source;
+  }
+  const double loop_error = (row.T_estimate.translation() - row.T_truth.translation()).norm();
+  row.correct = is_true && loop_error < config.pose_tolerance;
+}
+
+/// Verification: every solver of the registry on every candidate pair (seeded by the pair), one
+/// ClosureRow each, in candidate then solver order.
+void verify_candidates(const LoopConfig& config, const MapsAndFeatures& mf, const Progress& report,
+                       LoopRun& run) {
+  StopWatch clock;
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const auto& name : config.solvers) solvers.push_back(SolverRegistry::create(name));
   const long long total_solves =
       static_cast<long long>(run.candidates.size()) * static_cast<long long>(solvers.size());
   long long solves = 0;
   for (const Candidate& c : run.candidates) {
-    const LocalMap& q = maps[c.query];
-    const LocalMap& m = maps[c.match];
+    const LocalMap& q = mf.maps[c.query];
+    const LocalMap& m = mf.maps[c.match];
     const Rigid<3> T_truth = m.T_world_map_truth.inverse() * q.T_world_map_truth;
-    ExtractParams ep = config.extract;
-    ep.seed = derive_seed(config.seed, {4, static_cast<std::uint64_t>(c.query),
-                                        static_cast<std::uint64_t>(c.match)});
-    Dump dump = match_features(features[c.query], features[c.match], T_truth, ep);
-    double overlap = overlap_ratio(q.occupancy, m.occupancy);
+    Dump dump = pair_correspondences(config, mf, c, T_truth);
+    const double overlap = overlap_ratio(q.occupancy, m.occupancy);
     bool is_true = false;
     for (const TrueClosure& t : run.true_closures) {
       if (t.query == c.query && t.match == c.match) is_true = true;
     }
     SolverParams sp = config.params;
-    sp.seed = derive_seed(config.seed, {5, static_cast<std::uint64_t>(c.query),
-                                        static_cast<std::uint64_t>(c.match)});
-    if (config.odometry_prior) attach_odometry_prior(dump, maps, c, config.drift);
+    sp.seed = derive_seed(
+        config.seed, {5, static_cast<std::uint64_t>(c.query), static_cast<std::uint64_t>(c.match)});
     for (std::size_t s = 0; s < solvers.size(); ++s) {
       ClosureRow row;
       row.query = c.query;
@@ -290,56 +376,49 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
       row.overlap = overlap;
       row.true_closure = is_true;
       row.T_truth = T_truth;
-      std::visit(
-          [&](auto& set) {
-            constexpr int Dim = std::decay_t<decltype(set.corr.source)>::RowsAtCompileTime;
-            set.truth.positive = is_true;
-            if (set.corr.empty()) {
-              row.record.solver = config.solvers[s];
-              row.record.dim = Dim;
-              row.record.status = "rejected";
-              row.record.message = "no correspondence";
-              return;
-            }
-            const Verification<Dim> v = verify(*solvers[s], set.corr, sp);
-            row.record = trial_record(v, config.solvers[s], set, sp, SuccessCriteria{});
-            if constexpr (Dim == 2) {
-              row.T_estimate = lift_planar(v.result.T_target_source);
-            } else {
-              row.T_estimate = v.result.T_target_source;
-            }
-          },
-          dump.set);
+      solve_pair(*solvers[s], config.solvers[s], dump, is_true, sp, row);
       row.record.dataset = "maps " + std::to_string(c.query) + " -> " + std::to_string(c.match);
-      row.rule_accepted = row.record.accepted;
-      if (config.dense.min_overlap > 0.0 && !row.record.T_target_source.empty()) {
-        row.dense = dense_check(q, m, row.T_estimate, config.dense);
-        if (row.record.accepted && !(row.dense.overlap > config.dense.min_overlap)) {
-          row.record.accepted = false;
-          row.record.message = "dense check: overlap " + std::to_string(row.dense.overlap) +
-                               " after ICP, not above " + std::to_string(config.dense.min_overlap);
-        }
-      }
-      row.translation_error = (row.T_estimate.translation() - T_truth.translation()).norm();
-      row.rotation_error_deg = rotation_error_deg<3>(row.T_estimate, T_truth);
-      if (row.dense.ran) {
-        // The loop goes on with the refined motion (as KISS-SLAM does): it is the one judged and
-        // put in the pose graph; the solver's own errors stay in the row.
-        row.T_solver = row.T_estimate;
-        row.T_estimate = row.dense.icp.T_target_source;
-      }
-      const double loop_error = (row.T_estimate.translation() - T_truth.translation()).norm();
-      row.correct = is_true && loop_error < config.pose_tolerance;
+      judge_row(config, q, m, is_true, row);
       run.rows.push_back(std::move(row));
       report("verify", ++solves, total_solves);
     }
   }
   run.seconds["verify_s"] = clock.ms() / 1000.0;
+}
 
-  // Scores, curves and the pose graphs, per solver (loop/evaluation.hpp).
-  clock = StopWatch();
-  summarise_solvers(config, maps, run);
+/// Metrics of the decisions, back end and metrics of the trajectories, per solver
+/// (loop/evaluation.hpp): scores and curves; the pose graph with the accepted closures by each
+/// back end (loop/backend.hpp: plain, robust); the APE of every scan with and without loops.
+void back_end_and_metrics(const LoopConfig& config, const MapsAndFeatures& mf, LoopRun& run) {
+  StopWatch clock;
+  score_solvers(config, run);
+  optimise_pose_graphs(config, mf.maps, run);
+  trajectory_errors(run);
   run.seconds["pose_graph_s"] = clock.ms() / 1000.0;
+}
+
+}  // namespace
+
+// The loop as its stages (sequence.hpp's header; the report is loop/loop_report.hpp's, written by
+// the command from the run).
+LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
+  config.validate();
+  const Progress report{progress};
+  StopWatch total_clock;
+  LoopRun run;
+  // Sources: the scans used, simulated or read.
+  run.frames = scans_used(config);
+  const Scans scans = open_scans(config, run);
+  // Odometry: the registry's kind (drift, gicp, poses, log).
+  const Trajectory odometry_all = run_odometry(config, scans.scan, report, run);
+  // Local maps and the front end's features of each.
+  const MapsAndFeatures mf = build_maps(config, odometry_all, scans.scan, report, run);
+  // Ground truth and retrieval: the true closures and the candidate pairs.
+  truth_and_retrieval(config, mf, run);
+  // Verification: every solver on every candidate, then the dense check.
+  verify_candidates(config, mf, report, run);
+  // Metrics and back end: scores, pose graphs (plain, robust), APE.
+  back_end_and_metrics(config, mf, run);
   run.seconds["total_s"] = total_clock.ms() / 1000.0;
   return run;
 }

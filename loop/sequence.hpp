@@ -1,22 +1,30 @@
 #pragma once
-// Loop closure on a sequence, end to end (the paper's evaluation, issue #14):
-//   scans      simulated (a seeded street world along the true trajectory, ray-cast by an
-//              HDL-64-like LiDAR) or read from a KITTI layout (velodyne/NNNNNN.bin), one every
-//              scan_spacing metres of travel;
-//   odometry   the drift model of generators/odometry.hpp on the true trajectory, or scan-to-scan
-//              GICP on the scans (frontend/scan_odometry.hpp);
-//   local maps every map_length metres of odometry travel (loop/local_maps.hpp);
-//   features   the 3d (ISS + B-SHOT) or 2d (BEV + ORB) front end on each map;
-//   retrieval  HBST votes over all older maps (loop/retrieval.hpp);
-//   verify     each solver of the registry on the correspondences of each candidate pair (every
-//              match within max_hamming bits, as an HBST query returns them), accepted by the
-//              solver's rule (count or calibrated p-value);
-//   truth      a pair is a true closure when its maps are at least min_map_gap apart, their true
-//              anchors within gt_max_distance, and their occupancies overlap by more than
-//              gt_overlap of the smaller; an accepted closure is correct when the pair is a true
-//              closure and the estimated relative pose is within pose_tolerance metres of the truth;
-//   back end   per solver, a pose graph of the maps (odometry edges + its accepted closures),
-//              with and without a robust loss; APE of every scan's pose with and without loops.
+// Loop closure on a sequence, end to end (the paper's evaluation, issue #14). run_loop is the list
+// of its stages (issue #29), each a small function of sequence.cpp over its own interface:
+//   sources     scans simulated (a seeded street world along the true trajectory, ray-cast by an
+//               HDL-64-like LiDAR) or read from a recorded sequence (loop/sources/, a registry
+//               of layouts), one every scan_spacing metres of travel;
+//   odometry    a kind of the registry of loop/odometry.hpp: the drift model of
+//               generators/odometry.hpp on the true trajectory, scan-to-scan GICP on the scans
+//               (frontend/scan_odometry.hpp), or poses given (a file, the recording's own log);
+//   local maps  every map_length metres of odometry travel (loop/local_maps.hpp);
+//   front end   the 3d (ISS + B-SHOT) or 2d (BEV + ORB) features of each map;
+//   truth       a pair is a true closure when its maps are at least min_map_gap apart, their
+//               true anchors within gt_max_distance, and their occupancies overlap by more than
+//               gt_overlap of the smaller; an accepted closure is correct when the pair is a
+//               true closure and the estimated relative pose is within pose_tolerance metres of
+//               the truth;
+//   retrieval   a retriever of the registry of loop/retrieval.hpp (HBST votes over all older
+//               maps, ...);
+//   verify      each solver of the registry on the correspondences of each candidate pair
+//               (every match within max_hamming bits, as an HBST query returns them), accepted
+//               by the solver's rule (count or calibrated p-value), then the dense check when on
+//               (loop/dense_check.hpp);
+//   metrics     per solver, the decisions scored (loop/evaluation.hpp, trajectory_metrics.hpp);
+//   back end    per solver, a pose graph of the maps (odometry edges + its accepted closures),
+//               solved by each back end of the registry of loop/backend.hpp (plain, robust);
+//               APE of every scan's pose with and without loops;
+//   report      loop/loop_report.hpp, written by the command from the run.
 #include <cstdint>
 #include <functional>
 #include <map>

@@ -900,3 +900,142 @@ TEST(DenseCheck, IcpReturnsToTheDrawnMotionAndAnAliasOverlapsLittle) {
   params.min_overlap = 1.0;
   EXPECT_THROW(params.validate(), std::invalid_argument);
 }
+
+// The loop in stages (issue #29): the odometry kinds and the back ends behind their registries.
+#include <random>
+
+#include "core/random.hpp"
+#include "core/registry.hpp"
+#include "loop/backend.hpp"
+#include "loop/odometry.hpp"
+
+TEST(LoopStages, RegistriesListTheirKinds) {
+  std::vector<std::string> names;
+  for (const auto& k : vb::list_odometries()) {
+    names.push_back(k.name);
+    EXPECT_FALSE(k.help.empty()) << k.name;
+    EXPECT_TRUE(static_cast<bool>(k.run)) << k.name;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"drift", "gicp", "poses", "log"}));
+  names.clear();
+  for (const auto& b : vb::list_backends()) {
+    names.push_back(b.name);
+    EXPECT_FALSE(b.help.empty()) << b.name;
+    EXPECT_TRUE(static_cast<bool>(b.solve)) << b.name;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"plain", "robust"}));
+}
+
+TEST(LoopStages, AnUnknownNameIsRefusedWithTheKnownNames) {
+  auto message = [](const std::function<void()>& f) -> std::string {
+    try {
+      f();
+    } catch (const vb::UnknownName& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string odo = message([] { vb::find_odometry("drfit"); });
+  EXPECT_NE(odo.find("unknown odometry 'drfit'"), std::string::npos) << odo;
+  EXPECT_NE(odo.find("did you mean 'drift'"), std::string::npos) << odo;
+  EXPECT_NE(odo.find("known: drift, gicp, poses, log"), std::string::npos) << odo;
+  const std::string back = message([] { vb::find_backend("robst"); });
+  EXPECT_NE(back.find("did you mean 'robust'"), std::string::npos) << back;
+  EXPECT_NE(back.find("known: plain, robust"), std::string::npos) << back;
+  // The loop's configuration is checked through the registry.
+  vb::LoopConfig config;
+  config.truth = {pose(0, 0, 0), pose(1, 0, 0), pose(2, 0, 0)};
+  config.odometry = "lidar";
+  try {
+    config.validate();
+    ADD_FAILURE() << "odometry 'lidar' accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("known: drift, gicp, poses, log"), std::string::npos)
+        << e.what();
+  }
+  // poses and log need one pose per frame.
+  config.odometry = "poses";
+  config.odometry_poses = {pose(0, 0, 0)};
+  EXPECT_THROW(vb::find_odometry("poses").validate(config), std::invalid_argument);
+}
+
+// Oracle: the drift model of generators/odometry.hpp recomputed by hand for three poses, with the
+// loop's seed derive_seed(seed, {3}) and the draws in their order (v x, y, z; w x, y, z per step).
+TEST(LoopStages, DriftOdometryThroughTheRegistryIsTheDriftModel) {
+  vb::LoopConfig config;
+  config.truth = {pose(0, 0, 0), pose(3, 1, 0.2), pose(5, 4, 0.7)};
+  config.drift.trans_rel = 0.05;
+  config.drift.yaw_deg = 2.0;
+  config.drift.tilt_deg = 0.5;
+  config.seed = 17;
+  const std::vector<int> frames{0, 1, 2};
+  const vb::ScanSource no_scans = [](int) { return std::vector<Eigen::Vector3f>{}; };
+  const vb::Trajectory odo = vb::find_odometry("drift").run({config, frames, no_scans, {}});
+  ASSERT_EQ(odo.size(), 3u);
+  // The free function, bit for bit.
+  const vb::Trajectory old =
+      vb::drift_odometry(config.truth, config.drift, vb::derive_seed(config.seed, {3}));
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(odo[i].matrix() == old[i].matrix()) << i;
+  // By hand.
+  std::mt19937_64 rng(vb::derive_seed(config.seed, {3}));
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const double deg = M_PI / 180.0;
+  vb::Rigid<3> expected = config.truth[0];
+  EXPECT_TRUE(odo[0].matrix() == expected.matrix());
+  for (int i = 1; i < 3; ++i) {
+    const vb::Rigid<3> D = config.truth[i - 1].inverse() * config.truth[i];
+    const double s = D.translation().norm();
+    Eigen::Vector3d v, w;
+    for (int k = 0; k < 3; ++k) v(k) = 0.05 * s * n01(rng);
+    w.x() = 0.5 * deg * std::sqrt(s) * n01(rng);
+    w.y() = 0.5 * deg * std::sqrt(s) * n01(rng);
+    w.z() = 2.0 * deg * std::sqrt(s) * n01(rng);
+    vb::Rigid<3> E = vb::Rigid<3>::Identity();
+    E.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix();
+    E.translation() = v;
+    expected = expected * D * E;
+    EXPECT_LT((odo[i].translation() - expected.translation()).norm(), 1e-12) << i;
+    EXPECT_LT((odo[i].linear() - expected.linear()).norm(), 1e-12) << i;
+    EXPECT_GT((odo[i].translation() - config.truth[i].translation()).norm(), 1e-6) << i;
+  }
+}
+
+TEST(LoopStages, PosesOdometryReturnsTheGivenPosesAndBackEndsAreTheCeresGraph) {
+  vb::LoopConfig config;
+  config.truth = {pose(0, 0, 0), pose(1, 0, 0), pose(2, 0, 0)};
+  config.odometry_poses = {pose(0, 0.5, 0.1), pose(1.2, 0.3, -0.2), pose(2.5, -1, 0.4)};
+  const std::vector<int> frames{0, 2};
+  const vb::ScanSource no_scans = [](int) { return std::vector<Eigen::Vector3f>{}; };
+  for (const char* name : {"poses", "log"}) {
+    config.odometry = name;
+    EXPECT_NO_THROW(vb::find_odometry(name).validate(config));
+    const vb::Trajectory odo = vb::find_odometry(name).run({config, frames, no_scans, {}});
+    ASSERT_EQ(odo.size(), config.odometry_poses.size()) << name;
+    for (std::size_t i = 0; i < odo.size(); ++i) {
+      EXPECT_TRUE(odo[i].matrix() == config.odometry_poses[i].matrix()) << name << " " << i;
+    }
+  }
+  // plain and robust are optimise_pose_graph without and with the Cauchy loss on loop edges.
+  const std::vector<vb::Rigid<3>> initial{pose(0, 0, 0), pose(1.1, 0.1, 0.05), pose(2.3, 0, 0.1)};
+  std::vector<vb::PoseEdge> edges(3);
+  edges[0].from = 0, edges[0].to = 1, edges[0].T_from_to = pose(1, 0, 0);
+  edges[1].from = 1, edges[1].to = 2, edges[1].T_from_to = pose(1, 0, 0);
+  edges[2].from = 0, edges[2].to = 2, edges[2].T_from_to = pose(4, 1, 0.3), edges[2].loop = true;
+  for (bool robust : {false, true}) {
+    vb::PoseGraphParams gp;
+    gp.robust = robust;
+    const vb::PoseGraphResult want = vb::optimise_pose_graph(initial, edges, gp);
+    const vb::PoseGraphResult got =
+        vb::find_backend(robust ? "robust" : "plain").solve(initial, edges);
+    ASSERT_EQ(got.poses.size(), want.poses.size());
+    for (std::size_t i = 0; i < got.poses.size(); ++i) {
+      EXPECT_TRUE(got.poses[i].matrix() == want.poses[i].matrix()) << robust << " " << i;
+    }
+    EXPECT_EQ(got.iterations, want.iterations);
+  }
+  // The robust loss gives the false loop less pull than the plain graph does.
+  const auto plain = vb::find_backend("plain").solve(initial, edges);
+  const auto robust = vb::find_backend("robust").solve(initial, edges);
+  EXPECT_LT((robust.poses[2].translation() - Eigen::Vector3d(2, 0, 0)).norm(),
+            (plain.poses[2].translation() - Eigen::Vector3d(2, 0, 0)).norm());
+}
