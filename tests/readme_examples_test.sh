@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# ctest readme_examples: every command of README.md's ```bash blocks, as written, in order, in one
+# shell (so K=... carries over), in a scratch copy of the layout the README assumes (build/,
+# reports/, scripts/ and ../shared beside it). Commands of the kinds below are not run here and
+# say why (each is run by CI elsewhere or needs what CI has not): a README command that fails
+# fails this test, naming it.
+# usage: readme_examples_test.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -uo pipefail
+src=$1 build=$2 work=$3
+rm -rf "$work" && mkdir -p "$work/repo"
+ln -s "$build" "$work/repo/build"
+ln -s "$src/reports" "$work/repo/reports"
+ln -s "$src/scripts" "$work/repo/scripts"
+if [ -d "$src/../shared" ]; then ln -s "$(cd "$src/../shared" && pwd)" "$work/shared"; fi
+skip_reason() {  # why a command is not run here, or nothing
+  case "$1" in
+    scripts/run*|scripts/test*) echo "the two commands: CI runs scripts/test itself" ;;
+    cmake\ -S*|cmake\ --build*) echo "a build: CI builds" ;;
+    cmake\ --install*|*pip\ install*|*-m\ venv*|'PYTHONPATH=~/vb'*) echo "installs: ctest install_consumer and python_install" ;;
+    scripts/peers*|scripts/loop*|scripts/benchmark*) echo "a benchmark job (minutes)" ;;
+    scripts/parallel-sweep*|scripts/slurm-sweep*) echo "a cluster job: ctest cluster_parallel and cluster_slurm" ;;
+    *'$KITTI'*) echo "needs a KITTI download" ;;
+    *../shared/*) [ -d "$work/shared" ] || echo "needs ../shared/data" ;;
+  esac
+}
+# The commands: comments dropped, continued lines joined; a for ... done block is one command.
+awk '/^```bash/{f=1; next} /^```/{f=0} f' "$src/README.md" |
+  sed -e 's/[[:space:]]#.*$//' -e 's/^#.*$//' |
+  awk '{ if (sub(/\\$/, "")) { buf = buf $0 " " } else { print buf $0; buf = "" } }' |
+  awk 'NF { if (loop) { cmd = cmd "\n" $0; if ($0 ~ /done/) { print cmd; print "\x1e"; loop = 0 } }
+            else if ($1 == "for") { cmd = $0; loop = 1 } else { print; print "\x1e" } }' \
+  > "$work/commands"
+cd "$work/repo"
+ran=0 skipped=0 failed=0
+script=$work/session.sh
+: > "$script"
+while IFS= read -r -d $'\x1e' cmd; do
+  cmd=${cmd#$'\n'}
+  cmd=${cmd%$'\n'}
+  [ -z "${cmd// }" ] && continue
+  why=$(skip_reason "$cmd")
+  if [ -n "$why" ]; then
+    echo "skip: $cmd ($why)"
+    skipped=$((skipped + 1))
+    continue
+  fi
+  ran=$((ran + 1))
+  run="( $cmd )"
+  [[ "$cmd" =~ ^[A-Za-z_][A-Za-z0-9_]*=[^[:space:]]*$ ]] && run=$cmd  # an assignment carries over
+  printf '%s\n' "echo \"run: \$(cat <<'VB_CMD'" "$cmd" "VB_CMD" ")\"" "SECONDS=0" \
+    "$run >/dev/null 2>\"$work/stderr\" || { echo \"FAILED: \$(tail -3 $work/stderr)\"; failed=\$((failed + 1)); }" \
+    "echo \"  \$SECONDS s\"" >> "$script"
+done < "$work/commands"
+echo 'exit $failed' >> "$script"
+bash -c "failed=0; source '$script'"
+rc=$?
+echo "readme_examples: $ran commands run, $skipped not run here (reasons above), $rc failed"
+[ "$rc" -eq 0 ]
