@@ -6,6 +6,12 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <cstring>
+#include <fcntl.h>
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "apps/cli.hpp"
 #ifdef VERIFYBENCH_HAVE_LOOP
@@ -110,6 +116,9 @@ void add_loop_options(Options& o) {
   cli::add_solver_options(o, {loop_solver_defaults(), "DIR",
                               "report folder: loop.json, loop.md, trajectories/ (required; new or "
                               "empty)"});
+  o.add("no-plots", "", "",
+        "do not draw the figures (DIR/loop_trajectory_<solver>.{png,pdf}, DIR/loop_pr.{png,pdf}; "
+        "drawn by reports/plot_loop.py on /usr/bin/python3 after the run)");
   o.add("overwrite", "", "",
         "--out may be an earlier run's folder: it is emptied once this run is done, before its "
         "results are written");
@@ -349,6 +358,53 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
   return p;
 }
 
+/// reports/plot_loop.py for this binary: installed (PREFIX/bin/verifybench ->
+/// PREFIX/share/verifybench/reports), else the source tree it was built from; "" when neither.
+std::string plot_loop_script() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / ".." / "share" / "verifybench" / "reports" /
+                               "plot_loop.py";
+    if (fs::exists(installed)) return installed.string();
+  }
+  const fs::path source = fs::path(VERIFYBENCH_SOURCE_REPORTS) / "plot_loop.py";
+  return fs::exists(source) ? source.string() : std::string();
+}
+
+/// The loop's figures (trajectories with their closures, precision-recall; PNG and PDF) in DIR,
+/// by reports/plot_loop.py on Debian's /usr/bin/python3 (it has matplotlib). The run's results
+/// stand without them: a missing script or interpreter, or a failed plot, is a warning that says
+/// how to draw them later, not an error.
+void draw_loop_figures(const std::string& dir, bool quiet) {
+  const std::string script = plot_loop_script();
+  const std::string python = "/usr/bin/python3";
+  const auto warn = [&](const std::string& why) {
+    std::cerr << "verifybench: warning: the loop figures were not drawn (" << why
+              << "); draw them with reports/plot_loop.py " << dir << "\n";
+  };
+  if (script.empty()) return warn("reports/plot_loop.py not found");
+  if (::access(python.c_str(), X_OK) != 0) return warn(python + " not found");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  // Its stdout (the paths it wrote) stays off ours, which carries only loop.json's path.
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  if (quiet) posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+  std::vector<std::string> args{python, script, dir};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, python.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) return warn(std::string("cannot start ") + python + ": " + std::strerror(spawned));
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) warn(script + " failed");
+}
+
 }  // namespace
 
 int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
@@ -384,6 +440,7 @@ int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string
   if (o.flag("overwrite")) clear_loop_dir(dir);
   write_loop_report(dir, report, md);
   write_loop_trajectories(dir, config, run);
+  if (!o.flag("no-plots")) draw_loop_figures(dir, quiet);
   if (!quiet) std::cerr << md;
   std::cout << dir << "/loop.json\n";
   for (const ClosureRow& r : run.rows) {

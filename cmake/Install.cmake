@@ -10,7 +10,7 @@ foreach(stage ${VERIFYBENCH_STAGES})
 endforeach()
 install(FILES ${VERIFYBENCH_BUILD_INCLUDE}/verifybench/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/verifybench)
-install(PROGRAMS reports/plot_report.py reports/summarize.py reports/real_table.py
+install(PROGRAMS reports/plot_report.py reports/plot_loop.py reports/summarize.py reports/real_table.py
                  reports/robustness_table.py reports/check_schema.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
 install(FILES reports/report_io.py DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)

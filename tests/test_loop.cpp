@@ -568,7 +568,10 @@ TEST(LoopCli, DrawnBlockTwiceEndToEnd) {
   const auto replaced = run_cli(again + (dir / "out").string() + " --overwrite");
   ASSERT_EQ(replaced.code, 0) << replaced.output;
   EXPECT_FALSE(fs::exists(dir / "out" / "stale.png"));
-  EXPECT_FALSE(fs::exists(dir / "out" / "loop_pr.png"));
+  // The run draws its own figures: this run's solver's, not the earlier run's ransac.
+  EXPECT_GT(fs::file_size(dir / "out" / "loop_pr.png"), 10000u);
+  EXPECT_GT(fs::file_size(dir / "out" / "loop_trajectory_clique.pdf"), 1000u);
+  EXPECT_FALSE(fs::exists(dir / "out" / "loop_trajectory_ransac.png"));
   std::ifstream second(dir / "out" / "loop.json");
   EXPECT_EQ(nlohmann::json::parse(second)["summary"].size(), 1u);  // this run's one solver
   fs::create_directories(dir / "notes");
@@ -588,7 +591,7 @@ TEST(LoopCli, OdometryPriorOnlyGatesTheCalibratedDecisions) {
   if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
   const fs::path dir = block_twice_folder("vb_loop_prior");
   auto run = [&](const std::string& extra, const std::string& out) {
-    const auto r = run_cli("loop --trajectory " + (dir / "poses.txt").string() +
+    const auto r = run_cli("loop --no-plots --trajectory " + (dir / "poses.txt").string() +
                            " --pipeline 2d --solvers clique --accept pvalue --scan-spacing 4"
                            " --lidar-columns 512 --quiet --threads 2 " +
                            extra + " --out " + (dir / out).string());
@@ -698,7 +701,7 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
       out.write(reinterpret_cast<const char*>(rec), sizeof rec);
     }
   }
-  const auto r = run_cli("loop --sequence " + dir.string() +
+  const auto r = run_cli("loop --no-plots --sequence " + dir.string() +
                          " --pipeline 2d --solvers clique --accept count --scan-spacing 2.9 --quiet"
                          " --out " +
                          (dir / "out").string());
@@ -721,7 +724,7 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
       drifted.push_back(T);
     }
     vb::write_tum_poses((dir / "odo.tum").string(), stamps, drifted);
-    const auto o = run_cli("loop --sequence " + dir.string() +
+    const auto o = run_cli("loop --no-plots --sequence " + dir.string() +
                            " --odometry poses --odometry-file " + (dir / "odo.tum").string() +
                            " --pipeline 2d --solvers clique --accept count --scan-spacing 2.9 "
                            "--quiet --out " +
@@ -745,7 +748,7 @@ TEST(LoopCli, KittiLayoutSequenceIsReadAndClosed) {
     std::vector<vb::Rigid<3>> short_poses(drifted.begin(), drifted.end() - 1);
     vb::write_kitti_poses((dir / "short.txt").string(), short_poses);
     const auto bad =
-        run_cli("loop --sequence " + dir.string() + " --odometry poses --odometry-file " +
+        run_cli("loop --no-plots --sequence " + dir.string() + " --odometry poses --odometry-file " +
                 (dir / "short.txt").string() + " --quiet --out " + (dir / "out_short").string());
     EXPECT_EQ(bad.code, 2) << bad.output;
     EXPECT_NE(bad.output.find("short.txt: " + std::to_string(path.size() - 1) + " poses for " +
@@ -776,7 +779,7 @@ TEST(LoopCli, Kitti00ExcerptWithTwoRevisits) {
       << "Tr: 4.276802385584e-04 -9.999672484946e-01 -8.084491683471e-03 -1.198459927713e-02 "
          "-7.210626507497e-03 8.081198471645e-03 -9.999413164504e-01 -5.403984729748e-02 "
          "9.999738645903e-01 4.859485810390e-04 -7.206933692422e-03 -2.921968648686e-01\n";
-  const auto r = run_cli("loop --trajectory " + poses.string() +
+  const auto r = run_cli("loop --no-plots --trajectory " + poses.string() +
                          " --trajectory-frame camera --calib " + (dir / "calib.txt").string() +
                          " --last-frame 1700 --pipeline 2d --solvers clique,ransac --accept count"
                          " --quiet --threads 2 --out " +
