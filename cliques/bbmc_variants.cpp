@@ -11,6 +11,7 @@
 
 #include "cliques/detail/bbmc.hpp"
 #include "cliques/detail/cover.hpp"
+#include "cliques/detail/sat_bb.hpp"
 #include "cliques/max_clique.hpp"
 #include "core/parallel.hpp"
 #include "core/random.hpp"
@@ -198,6 +199,19 @@ CliqueSearchResult run_bbmc(const BitGraph& g, const CliqueSearchParams& p) {
                 max_core(cd) + 1);
 }
 
+// bbmcx-sat: the whole graph in min-width order, the incremental MaxSAT bound (sat_bb.hpp).
+CliqueSearchResult run_bbmcx_sat(const BitGraph& g, const CliqueSearchParams& p) {
+  SearchBudget budget = make_budget(p);
+  const CoreDecomposition cd = detail::core_decomposition(g, budget.deadline);
+  const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
+  const BitGraph sub = detail::permuted(g, order, budget.deadline);
+  detail::SatBranchAndBound bb(sub, 0, budget);
+  bb.run();
+  std::vector<int> found;
+  for (int k : bb.best()) found.push_back(order[static_cast<std::size_t>(k)]);
+  return finish(std::move(found), true, budget, max_core(cd) + 1);
+}
+
 // bbmcx-ls: bbmcx with DLS-MC interleaved; its stream derives from the seed, so a seed gives one
 // clique and one search tree.
 CliqueSearchResult run_bbmcx_ls(const BitGraph& g, const CliqueSearchParams& p) {
@@ -291,6 +305,8 @@ std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point dea
 constexpr long long kLocalBaseSteps = 4000;
 constexpr int kNearCliqueRatio = 8;  // the greedy clique is at least 1/8 of the pruned graph
 long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
+// auto hands near-clique nodes to the cover search only when the incumbent is this large.
+constexpr int kCoverIncumbent = 64;
 
 template <bool kAuto>
 CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& params) {
@@ -333,7 +349,10 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         upper = std::min(upper, cover.upper_bound());
       } else {
         BranchAndBound bb(sub, incumbent, budget, true, true);
-        bb.hand_off_near_cliques();
+        // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus);
+        // below kCoverIncumbent it costs (C125.9 339 -> 25 ms, p_hat300-3 7.7 -> 0.61 s,
+        // gen200_p0.9_55 29 -> 4 ms without it; BENCHMARK.md, section 28).
+        if (incumbent >= kCoverIncumbent) bb.hand_off_near_cliques();
         bb.run();
         found = bb.best();
       }
@@ -518,6 +537,10 @@ void register_clique_algorithms() {
                            "BBMCX: BBMCR plus the infra-chromatic bound (absorbs a vertex whose "
                            "one neighbour in a class sees none of its neighbours in another)",
                            true, run_bbmc<true, true>});
+    CliqueAlgorithms::add({"bbmcx-sat",
+                           "BBMCR plus the incremental MaxSAT bound of IncMaxCLQ/MoMC (unit "
+                           "propagation and failed literals over the colour classes)",
+                           true, run_bbmcx_sat});
     CliqueAlgorithms::add({"bbmcx-ls",
                            "BBMCX with a DLS-MC local search interleaved for the lower bound", true,
                            run_bbmcx_ls});

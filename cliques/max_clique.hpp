@@ -6,6 +6,8 @@
 //   bbmcr       bbmc with re-colouring of branching candidates (Re-NUMBER; BBMCR)
 //   bbmc-kcore  bbmc after a greedy lower bound and k-core pruning (as PMC does inside TEASER++)
 //   bbmcx       bbmcr plus the infra-chromatic bound of BBMCX
+//   bbmcx-sat   bbmcr plus the incremental MaxSAT bound (IncMaxCLQ / MoMC: unit propagation and
+//               failed literals over the colour classes; cliques/detail/sat_bb.hpp)
 //   bbmcx-ls    bbmcx with a DLS-MC local search interleaved, for an early lower bound
 //   bbmc-dec    PMC-style decomposition: for each vertex in degeneracy order, BBMC on its later
 //               neighbours (a compact subgraph of at most degeneracy vertices); exact; parallel

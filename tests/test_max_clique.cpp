@@ -594,3 +594,123 @@ TEST(CoreDecomposition, MatchesNaivePeeling) {
 
 }  // namespace
 }  // namespace verifybench
+
+// bbmcx-sat (cliques/detail/sat_bb.hpp): the incremental MaxSAT bound over the colour classes.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cliques/detail/sat_bb.hpp"
+#include "datasets/dimacs.hpp"
+
+namespace verifybench {
+namespace {
+
+TEST(MaxSatBound, MatchesBruteForceOnManyRandomGraphsOfVariedDensity) {
+  register_clique_algorithms();
+  std::mt19937_64 rng(32002);
+  for (int n : {20, 26, 30, 34}) {
+    for (double density : {0.2, 0.4, 0.6, 0.75, 0.85, 0.92, 0.97}) {
+      for (int rep = 0; rep < 4; ++rep) {
+        const BitGraph g = test::random_graph(n, density, rng);
+        const auto r = CliqueAlgorithms::get("bbmcx-sat").run(g, {});
+        ASSERT_TRUE(r.optimal);
+        ASSERT_TRUE(g.is_clique(r.clique));
+        ASSERT_EQ(static_cast<int>(r.clique.size()), test::brute_force_clique_number(g))
+            << "n=" << n << " density=" << density << " rep=" << rep;
+      }
+    }
+  }
+}
+
+TEST(MaxSatBound, NeverPrunesBelowTheCliqueNumber) {
+  // With the incumbent at omega - 1 every bound in the tree must stay >= omega on the way to a
+  // maximum clique (one bound below omega would prune it); with omega, nothing is found.
+  std::mt19937_64 rng(32003);
+  for (int rep = 0; rep < 120; ++rep) {
+    const int n = 12 + rep % 25;
+    const double density = 0.3 + 0.65 * static_cast<double>(rep % 11) / 10.0;
+    const BitGraph g = test::random_graph(n, density, rng);
+    const int omega = test::brute_force_clique_number(g);
+    detail::SearchBudget budget = detail::make_budget({});
+    detail::SatBranchAndBound below(g, omega - 1, budget);
+    below.run();
+    ASSERT_EQ(static_cast<int>(below.best().size()), omega) << "rep " << rep;
+    ASSERT_TRUE(g.is_clique(below.best()));
+    detail::SatBranchAndBound at(g, omega, budget);
+    at.run();
+    ASSERT_TRUE(at.best().empty()) << "rep " << rep;
+    EXPECT_FALSE(budget.stopped);
+  }
+}
+
+TEST(MaxSatBound, AbsorbsBranchingVerticesOnDenseGraphs) {
+  // The test is not idle: on a dense random graph it takes vertices out of the branching sets.
+  std::mt19937_64 rng(32004);
+  const BitGraph g = test::random_graph(90, 0.9, rng);
+  detail::SearchBudget budget = detail::make_budget({});
+  detail::SatBranchAndBound bb(g, 0, budget);
+  bb.run();
+  EXPECT_GT(bb.absorbed(), 0);
+  EXPECT_TRUE(g.is_clique(bb.best()));
+}
+
+TEST(MaxSatBound, MatchesKnownDimacsCliqueNumbers) {
+  const std::filesystem::path dir = std::filesystem::path(VERIFYBENCH_SHARED_DATA) / "dimacs";
+  if (!std::filesystem::exists(dir / "MANIFEST.tsv")) GTEST_SKIP() << "shared data absent";
+  register_clique_algorithms();
+  std::ifstream manifest(dir / "MANIFEST.tsv");
+  std::string line;
+  std::getline(manifest, line);  // header
+  int solved = 0;
+  while (std::getline(manifest, line)) {
+    std::istringstream fields(line);
+    std::string name;
+    int n = 0, omega = 0;
+    long long m = 0;
+    if (!(fields >> name >> n >> m >> omega)) continue;
+    if (n > 300 || !std::filesystem::exists(dir / (name + ".clq"))) continue;  // the small ones
+    const BitGraph g = read_dimacs((dir / (name + ".clq")).string());
+    CliqueSearchParams p;
+    p.node_limit = 300'000;  // deterministic budget; the small ones finish well within it
+    for (const char* algorithm : {"bbmcx-sat", "auto"}) {
+      const auto r = CliqueAlgorithms::get(algorithm).run(g, p);
+      ASSERT_TRUE(g.is_clique(r.clique)) << algorithm << " " << name;
+      EXPECT_LE(static_cast<int>(r.clique.size()), omega) << algorithm << " " << name;
+      EXPECT_GE(r.upper_bound, omega) << algorithm << " " << name;
+      if (r.optimal) {
+        EXPECT_EQ(static_cast<int>(r.clique.size()), omega) << algorithm << " " << name;
+        solved += algorithm == std::string("bbmcx-sat");
+      }
+    }
+  }
+  EXPECT_GE(solved, 5);
+}
+
+TEST(MaxSatBound, SameCliqueForAnyThreadCountAndLimitsStopIt) {
+  register_clique_algorithms();
+  std::mt19937_64 rng(32005);
+  const BitGraph g = test::random_graph(150, 0.8, rng);
+  for (const char* algorithm : {"bbmcx-sat", "auto"}) {
+    CliqueSearchParams one, four;
+    four.threads = 4;
+    const auto a = CliqueAlgorithms::get(algorithm).run(g, one);
+    const auto b = CliqueAlgorithms::get(algorithm).run(g, four);
+    EXPECT_TRUE(a.optimal && b.optimal) << algorithm;
+    EXPECT_EQ(a.clique, b.clique) << algorithm;
+  }
+  CliqueSearchParams limited;
+  limited.node_limit = 50;
+  const auto r = CliqueAlgorithms::get("bbmcx-sat").run(g, limited);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_FALSE(r.optimal);
+  EXPECT_TRUE(g.is_clique(r.clique));
+  CliqueSearchParams timed;
+  timed.time_limit_s = 1e-9;
+  const auto t = CliqueAlgorithms::get("bbmcx-sat").run(g, timed);
+  EXPECT_TRUE(t.stopped);
+  EXPECT_TRUE(g.is_clique(t.clique));
+}
+
+}  // namespace
+}  // namespace verifybench

@@ -1,0 +1,90 @@
+#pragma once
+// Bitset branch and bound with an incremental MaxSAT bound over the colour classes (bbmcx-sat).
+// Internal to cliques/. The bound is the one of Li & Quan's MaxCLQ / IncMaxCLQ (AAAI 2010,
+// "An efficient branch-and-bound algorithm based on MaxSAT for the maximum clique problem";
+// "Combining MaxSAT reasoning and incremental upper bound for the maximum clique problem",
+// ICTAI 2010) as MoMC (Li, Jiang & Manya, C&OR 2017) and LMC (Jiang, Li & Manya, ECAI 2016)
+// apply it to the branching set, written here on BBMC's bitsets:
+//
+// A node's candidates P are greedily coloured. With incumbent b and clique C, only classes past
+// r = b - |C| matter: the vertices there form the branching set B, the rest A (classes C_1..C_r).
+// Read each class as a soft clause "some vertex of C_k is in the clique" and each non-edge as a
+// hard clause; then a clique of A u {v} takes at most (number of classes) - (number of disjoint
+// inconsistent subsets of classes) vertices. For each v in B (colour order) we add the singleton
+// class {v} and run unit propagation: v true removes its non-neighbours from every class, a class
+// left with one vertex becomes a unit and propagates in turn, a class left empty is a conflict.
+// The classes the conflict depends on (found by walking back the units that removed vertices,
+// the standard conflict analysis) with {v} are an inconsistent subset: v moves from B into A and
+// those classes are frozen (later tests and re-numbering skip them, which keeps the subsets
+// disjoint), so A keeps the bound r and v is never branched on. Before the test, v is
+// re-numbered into a low class when it can be (Tomita's Re-NUMBER, BBMCR), which keeps every
+// class. A vertex left in B at colour c keeps the bound min(c, r + its rank in B): the low classes
+// bound A by r, and B's first vertices by their colours or their count.
+//
+// Where unit propagation alone finds no conflict, each low class of two or three vertices left is
+// tested by failed literals (IncMaxCLQ, MoMC): when every one of its vertices, set true on top of
+// the propagation, leads to a conflict, the class with the union of their reasons is inconsistent.
+#include <vector>
+
+#include "cliques/detail/bbmc.hpp"
+
+namespace verifybench::detail {
+
+class SatBranchAndBound {
+ public:
+  SatBranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget);
+
+  void run();
+  /// A clique larger than the incumbent (ids of g), or empty when none was found.
+  const std::vector<int>& best() const { return best_; }
+  /// The number of branching vertices the MaxSAT test took out of B (for the benchmarks).
+  long long absorbed() const { return absorbed_; }
+
+  /// Hands every node whose candidates are a near-clique to a CoverSearch, as
+  /// BranchAndBound::hand_off_near_cliques() does, when it needs at least `min_needed` vertices.
+  void hand_off_near_cliques(int min_needed) { cover_min_ = min_needed; }
+
+ private:
+  void expand(int depth);
+  int colour(const Word* P, int depth, int kmin);
+  int filter(int depth, int count, int low);  // the MaxSAT step; returns |B|
+  bool renumber(int v, int low);
+  bool conflict(int v, int low);  // unit propagation from {v}; freezes the subset found
+  int only_neighbour(const Word* C, const Word* N) const;
+  void search_cover(const Word* P, int size);
+
+  // Unit propagation state over `low` classes plus the singleton {v} (index low).
+  // Sets up the classes with v true; returns true when v fits a class outright (joins it).
+  bool up_reset(int v, int low);
+  // Propagates the queued units from queue position `from`; returns the empty class or -1.
+  int up_propagate(int low, int from);
+  void up_set_unit(int cls, int u);
+  void mark_reasons(int cls, std::vector<char>& marks);
+
+  const BitGraph& g_;
+  const int W_;
+  int best_size_;
+  SearchBudget& budget_;
+  int cover_min_ = 0;  // 0 = no hand-off
+  long long absorbed_ = 0;
+  std::vector<int> clique_, best_;
+  std::vector<std::vector<Word>> levels_;
+  std::vector<std::vector<int>> order_, colour_;
+  std::vector<Word> U_, Q_, classes_;
+  std::vector<char> frozen_;
+  int colours_ = 0, coloured_ = 0, lo_ = 0, end_ = 0;  // words [lo_, end_) hold candidates
+
+  // Unit propagation scratch.
+  std::vector<Word> rem_;          // remaining vertices per class (low + 1 rows of W_)
+  std::vector<int> count_;         // |rem| per class
+  std::vector<int> unit_of_;       // the class's unit vertex once queued, else -1
+  std::vector<int> queue_;         // classes queued as units, in order
+  std::vector<int> reason_head_;   // per class: first reason edge (-1 = none)
+  std::vector<int> reason_class_;  // per edge: the unit class that removed vertices
+  std::vector<int> reason_next_;   // per edge: next edge of the same class
+  std::vector<Word> saved_;        // the rows before a failed-literal probe
+  std::vector<int> saved_count_, saved_heads_, stack_;
+  std::vector<char> marks_, marks2_;
+};
+
+}  // namespace verifybench::detail
