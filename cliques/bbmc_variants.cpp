@@ -305,8 +305,16 @@ std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point dea
 constexpr long long kLocalBaseSteps = 4000;
 constexpr int kNearCliqueRatio = 8;  // the greedy clique is at least 1/8 of the pruned graph
 long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
-// auto hands near-clique nodes to the cover search only when the incumbent is this large.
+// auto hands near-clique nodes to the cover search on sparse graphs (the correspondence graphs:
+// 3DMatch at density 0.07, omega 60, 15% more instructions without it), and on dense ones only
+// when the incumbent is this large.
 constexpr int kCoverIncumbent = 64;
+constexpr double kDenseGraph = 0.5;
+bool hands_off_near_cliques(const BitGraph& g, int incumbent) {
+  const double n = g.size();
+  const double density = n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
+  return incumbent >= kCoverIncumbent || density < kDenseGraph;
+}
 
 template <bool kAuto>
 CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& params) {
@@ -349,10 +357,11 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         upper = std::min(upper, cover.upper_bound());
       } else {
         BranchAndBound bb(sub, incumbent, budget, true, true);
-        // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus);
-        // below kCoverIncumbent it costs (C125.9 339 -> 25 ms, p_hat300-3 7.7 -> 0.61 s,
-        // gen200_p0.9_55 29 -> 4 ms without it; BENCHMARK.md, section 28).
-        if (incumbent >= kCoverIncumbent) bb.hand_off_near_cliques();
+        // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus) and
+        // on sparse correspondence graphs; on dense graphs with smaller cliques it costs (C125.9
+        // 339 -> 25 ms, p_hat300-3 7.7 -> 0.61 s, gen200_p0.9_55 29 -> 4 ms without it;
+        // BENCHMARK.md, section 28). The density is the whole graph's, before pruning.
+        if (hands_off_near_cliques(g, incumbent)) bb.hand_off_near_cliques();
         bb.run();
         found = bb.best();
       }
