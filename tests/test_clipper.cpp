@@ -500,33 +500,6 @@ TEST(ClipperSolver, BadInputEmptySetsAndTimeLimits) {
   EXPECT_EQ(big.status, Status::error);
 }
 
-TEST(ClipperSolver, ScoresNeverExceedTheirBound) {
-  const auto solver = SolverRegistry::create("clipper");
-  SolverParams params;
-  params.eps = 0.4;
-  for (bool plain : {false, true}) {
-    params.clipper.no_kcore = plain;
-    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-      SyntheticParams p;
-      p.n = 16;
-      p.outlier_ratio = seed % 3 == 0 ? 0.0 : 0.5;
-      p.extent = 2.0;
-      p.seed = seed;
-      const auto set = make_synthetic<3>(p);
-      const auto r = solver->solve(set.corr, params);
-      for (int part_size : {2048, 64, 8, 5}) {
-        const auto bound = solver->score_bound(set.corr, params, part_size);
-        ASSERT_TRUE(bound.has_value());
-        EXPECT_LE(static_cast<int>(r.inliers.size()), *bound) << seed << " " << part_size;
-      }
-      if (r.omega_upper_bound) {
-        const BitGraph g = build_compatibility_graph(set.corr, GraphParams{params.eps});
-        EXPECT_LE(test::brute_force_clique_number(g), *r.omega_upper_bound);
-      }
-    }
-  }
-}
-
 TEST(ClipperRelaxation, OnLargerGraphsAgainstTheExactSearch) {
   // n = 40-100 random graphs with a planted clique, where Algorithm 1 alone misses more often; the
   // exact branch and bound (max_clique) is the oracle.

@@ -2,8 +2,8 @@
 // reference peeling written here, Quatro's closed-form yaw against a brute-force scan of its cost
 // and its GNC-TLS yaw against a brute-force scan of the truncated least-squares cost; each
 // recovers motions drawn here in its paper's regime, quatro's rotation stays about z under roll,
-// and both pass the registry's contract (bad input, empty sets, a microsecond limit, bounds,
-// threads).
+// and both give the same answer for any thread count (the registry's contract -- bad input,
+// empty sets, a microsecond limit, bounds -- runs in test_field_verifiers' EachSolver).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -328,84 +328,9 @@ TEST(Quatro, KeepsItsRotationAboutZUnderRoll) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The registry's contract, for both.
+// Both: the same answer for any thread count, and their rows registered.
 
 class EachOfTwo : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(EachOfTwo, BadInputIsAnErrorAndAnEmptySetIsRejected) {
-  const auto solver = SolverRegistry::create(GetParam());
-  Correspondences<3> c;
-  c.source = Eigen::Matrix3Xd::Random(3, 10);
-  c.target = c.source;
-  c.target(1, 4) = std::numeric_limits<double>::quiet_NaN();
-  auto r = solver->solve(c, SolverParams{});
-  EXPECT_EQ(r.status, Status::error);
-  EXPECT_NE(r.message.find("correspondence 4"), std::string::npos) << r.message;
-  Correspondences<2> mismatched{Eigen::Matrix2Xd::Zero(2, 4), Eigen::Matrix2Xd::Zero(2, 5), {}, {}};
-  EXPECT_EQ(solver->solve(mismatched, SolverParams{}).status, Status::error);
-  SolverParams bad;
-  bad.inlier_threshold = -1;
-  EXPECT_EQ(solver->solve(Correspondences<3>{c.source, c.source, {}, {}}, bad).status,
-            Status::error);
-  SolverParams bad_mode;
-  bad_mode.robin.mode = 2;
-  EXPECT_EQ(solver->solve(Correspondences<3>{c.source, c.source, {}, {}}, bad_mode).status,
-            Status::error);
-  for (const auto& empty : {solver->solve(Correspondences<2>{}, SolverParams{}).status,
-                            solver->solve(Correspondences<3>{}, SolverParams{}).status}) {
-    EXPECT_EQ(empty, Status::rejected);
-  }
-  Correspondences<3> one{Eigen::Matrix3Xd::Zero(3, 1), Eigen::Matrix3Xd::Zero(3, 1), {}, {}};
-  EXPECT_EQ(solver->solve(one, SolverParams{}).status, Status::rejected);
-  Correspondences<2> same{Eigen::Matrix2Xd::Ones(2, 6), Eigen::Matrix2Xd::Ones(2, 6), {}, {}};
-  EXPECT_EQ(solver->solve(same, SolverParams{}).status, Status::rejected);
-}
-
-TEST_P(EachOfTwo, AMicrosecondLimitReturnsPromptly) {
-  const auto solver = SolverRegistry::create(GetParam());
-  SyntheticParams p;
-  p.n = 1000;
-  p.outlier_ratio = 0.95;
-  SolverParams params;
-  params.time_limit_s = 1e-6;
-  for (int dim : {2, 3}) {
-    const auto start = std::chrono::steady_clock::now();
-    const Status status = dim == 2 ? solver->solve(make_synthetic<2>(p).corr, params).status
-                                   : solver->solve(make_synthetic<3>(p).corr, params).status;
-    const double s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::cout << "[ limit    ] " << GetParam() << " " << dim << "D: " << s * 1e3 << " ms\n";
-    EXPECT_NE(status, Status::error) << dim;
-  }
-}
-
-TEST_P(EachOfTwo, ScoresNeverExceedTheirBound) {
-  const auto solver = SolverRegistry::create(GetParam());
-  SolverParams params;
-  params.eps = 0.4;
-  params.inlier_threshold = 0.2;
-  for (int mode : {RobinParams::kMaxCore, RobinParams::kMaxClique}) {
-    params.robin.mode = mode;
-    for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-      SyntheticParams p;
-      p.n = 16;
-      p.outlier_ratio = seed % 3 == 0 ? 0.0 : 0.5;
-      p.extent = 2.0;
-      p.seed = seed;
-      const auto set = make_synthetic<3>(p);
-      const auto score = static_cast<int>(solver->solve(set.corr, params).inliers.size());
-      for (int part_size : {2048, 64, 8, 5}) {
-        const auto bound = solver->score_bound(set.corr, params, part_size);
-        ASSERT_TRUE(bound.has_value());
-        EXPECT_LE(score, *bound) << "seed " << seed << " part size " << part_size;
-      }
-    }
-    SyntheticParams clean;
-    clean.n = 200;
-    clean.outlier_ratio = 0.0;
-    EXPECT_EQ(solver->score_bound(make_synthetic<3>(clean).corr, params, 2048), 200);
-  }
-}
 
 TEST_P(EachOfTwo, ResultsDoNotDependOnThreads) {
   const auto solver = SolverRegistry::create(GetParam());

@@ -285,7 +285,8 @@ TEST(FastMac, NodeGuidedSelectionKeepsTheLargestCliqueThroughEachVertex) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Both: recovery of drawn motions, threads, the solver contract.
+// Both: recovery of drawn motions and threads (the solver contract runs in
+// test_field_verifiers' EachSolver).
 
 struct Regime {
   std::string solver;
@@ -385,67 +386,6 @@ void expect_same_answer_for_one_and_two_threads(const std::string& name) {
 TEST_P(EachSolver, SameAnswerForOneAndTwoThreads) {
   expect_same_answer_for_one_and_two_threads<2>(GetParam());
   expect_same_answer_for_one_and_two_threads<3>(GetParam());
-}
-
-TEST_P(EachSolver, BadInputIsAnErrorAndAnEmptySetIsRejected) {
-  const auto solver = SolverRegistry::create(GetParam());
-  Correspondences<3> c;
-  c.source = Eigen::Matrix3Xd::Random(3, 10);
-  c.target = c.source;
-  c.target(1, 4) = std::numeric_limits<double>::quiet_NaN();
-  auto r = solver->solve(c, SolverParams{});
-  EXPECT_EQ(r.status, Status::error);
-  EXPECT_NE(r.message.find("correspondence 4"), std::string::npos) << r.message;
-  SolverParams bad;
-  bad.turboreg.pivots = 0;
-  bad.fastmac.ratio = 0.0;
-  EXPECT_EQ(solver->solve(Correspondences<3>{c.source, c.source, {}, {}}, bad).status,
-            Status::error);
-  for (const auto& empty : {solver->solve(Correspondences<2>{}, SolverParams{}).status,
-                            solver->solve(Correspondences<3>{}, SolverParams{}).status}) {
-    EXPECT_EQ(empty, Status::rejected);
-  }
-  Correspondences<3> one{Eigen::Matrix3Xd::Zero(3, 1), Eigen::Matrix3Xd::Zero(3, 1), {}, {}};
-  EXPECT_EQ(solver->solve(one, SolverParams{}).status, Status::rejected);
-  Correspondences<2> same{Eigen::Matrix2Xd::Ones(2, 6), Eigen::Matrix2Xd::Ones(2, 6), {}, {}};
-  EXPECT_EQ(solver->solve(same, SolverParams{}).status, Status::rejected);
-}
-
-TEST_P(EachSolver, AMicrosecondLimitReturnsPromptly) {
-  const auto solver = SolverRegistry::create(GetParam());
-  SyntheticParams p;
-  p.n = 1000;
-  p.outlier_ratio = 0.95;
-  SolverParams params;
-  params.time_limit_s = 1e-6;
-  for (int dim : {2, 3}) {
-    const auto start = std::chrono::steady_clock::now();
-    const Status status = dim == 2 ? solver->solve(make_synthetic<2>(p).corr, params).status
-                                   : solver->solve(make_synthetic<3>(p).corr, params).status;
-    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
-    EXPECT_NE(status, Status::error) << dim;
-  }
-}
-
-TEST_P(EachSolver, ScoresNeverExceedTheirBound) {
-  const auto solver = SolverRegistry::create(GetParam());
-  SolverParams params;
-  params.eps = 0.4;
-  params.inlier_threshold = 0.2;
-  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    SyntheticParams p;
-    p.n = 16;
-    p.outlier_ratio = seed % 3 == 0 ? 0.0 : 0.5;
-    p.extent = 2.0;
-    p.seed = seed;
-    const auto set = make_synthetic<3>(p);
-    const auto score = static_cast<int>(solver->solve(set.corr, params).inliers.size());
-    for (int part_size : {2048, 64, 8, 5}) {
-      const auto bound = solver->score_bound(set.corr, params, part_size);
-      ASSERT_TRUE(bound.has_value());
-      EXPECT_LE(score, *bound) << "seed " << seed << " part size " << part_size;
-    }
-  }
 }
 
 INSTANTIATE_TEST_SUITE_P(TurboRegFastMac, EachSolver, ::testing::Values("turboreg", "fastmac"));
