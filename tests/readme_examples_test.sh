@@ -51,6 +51,16 @@ while IFS= read -r -d $'\x1e' cmd; do
     "$run >/dev/null 2>\"$work/stderr\" || { echo \"FAILED: \$(tail -3 $work/stderr)\"; failed=\$((failed + 1)); }" \
     "echo \"  \$SECONDS s\"" >> "$script"
 done < "$work/commands"
+# Then each ```python block, as a script, on Debian's interpreter with the build's module (as the
+# block's first comment says), in the same folder.
+awk '/^```python/{f=1; n++; next} /^```/{f=0} f{print > (dir "/block" n ".py")}' dir="$work" "$src/README.md"
+for py in "$work"/block*.py; do
+  [ -e "$py" ] || continue
+  ran=$((ran + 1))
+  printf '%s\n' "echo \"run: python $(basename "$py")\"" \
+    "PYTHONPATH=build/python /usr/bin/python3 '$py' >/dev/null 2>\"$work/stderr\" || { echo \"FAILED: \$(tail -3 $work/stderr)\"; failed=\$((failed + 1)); }" \
+    >> "$script"
+done
 echo 'exit $failed' >> "$script"
 bash -c "failed=0; source '$script'"
 rc=$?
