@@ -22,20 +22,12 @@
 #include <vector>
 
 #include "cliques/max_clique.hpp"
-#include "core/detail/multiversion.hpp"
 #include "core/parallel.hpp"
 #include "core/timer.hpp"
 #include "graph/bitgraph.hpp"
+#include "solvers/detail/sc2.hpp"
 
 namespace verifybench::fastmac {
-
-/// |a & b| over `words` words, compiled with the hardware popcount where the CPU has one.
-VB_MULTIVERSION_POPCNT
-static int count_common(const BitGraph::Word* a, const BitGraph::Word* b, int words) {
-  int common = 0;
-  for (int w = 0; w < words; ++w) common += __builtin_popcountll(a[w] & b[w]);
-  return common;
-}
 
 /// The generalized degree signal and its high-pass response.
 struct DegreeSignal {
@@ -75,7 +67,7 @@ inline std::optional<DegreeSignal> degree_signal(const BitGraph& g, WorkerPool& 
     auto& w = weights[static_cast<std::size_t>(i)];
     double d = g.degree(i) + 1;  // W_ii = deg_i + 1
     for_each_neighbour(i, [&](int j) {
-      w.push_back(count_common(g.row(i), g.row(j), g.words()) + 2);  // W_ij, an edge
+      w.push_back(common_count(g.row(i), g.row(j), g.words()) + 2);  // W_ij, an edge
       d += w.back();
     });
     s.degree[static_cast<std::size_t>(i)] = d;

@@ -17,12 +17,12 @@
 #include <cmath>
 #include <vector>
 
-#include "core/detail/multiversion.hpp"
 #include "core/parallel.hpp"
 #include "core/rigid_fit.hpp"
 #include "core/timer.hpp"
 #include "graph/bitgraph.hpp"
 #include "solvers/detail/consensus.hpp"
+#include "solvers/detail/sc2.hpp"
 
 namespace verifybench::turboreg {
 
@@ -44,19 +44,10 @@ inline bool heavier(const Pivot& a, const Pivot& b) {
   return a.i != b.i ? a.i < b.i : a.j < b.j;
 }
 
-/// |a & b| over `words` words, compiled with the hardware popcount where the CPU has one
-/// (baseline x86-64 has none: a software count is several times slower).
-VB_MULTIVERSION_POPCNT
-static int count_common(const BitGraph::Word* a, const BitGraph::Word* b, int words) {
-  int common = 0;
-  for (int w = 0; w < words; ++w) common += __builtin_popcountll(a[w] & b[w]);
-  return common;
-}
-
 /// SC2_ij of Eq. (7) of SC2-PCR for an edge {i, j} (detail/sc2.hpp's sc2_entry): the common
 /// neighbours + 2.
 inline int edge_weight(const BitGraph& g, int i, int j) {
-  return count_common(g.row(i), g.row(j), g.words()) + 2;
+  return common_count(g.row(i), g.row(j), g.words()) + 2;
 }
 
 /// Removes edge {u, v} (the authors' mask of pairs too close to fit a stable motion).
