@@ -35,7 +35,9 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const Shard shard = cli::shard(o);
   const long long units = static_cast<long long>(names.size()) * trials;  // (solver, trial)
   const std::string out = cli::report_path(o);
-  const auto [prior_rot, prior_trans] = cli::prior_sigmas(o);
+  // Named, not a structured binding: lambdas capture bindings only from C++20 (clang refuses).
+  const auto prior = cli::prior_sigmas(o);
+  const double prior_rot = prior.first, prior_trans = prior.second;
   const std::string expected_text = o.text("expected");
   if (expected_text != "auto" && expected_text != "positive" && expected_text != "negative") {
     throw UsageError("--expected: '" + expected_text + "' is not positive, negative or auto");

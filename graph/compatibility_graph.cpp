@@ -71,7 +71,10 @@ struct FloatColumns {
     double extent = 0;
     for (int side = 0; side < 2; ++side) {
       const auto& pts = side == 0 ? corr.source : corr.target;
-      const Eigen::Matrix<double, Dim, 1> mean = pts.rowwise().mean();
+      // No mean of an empty set: Eigen offsets its null data pointer there (undefined behaviour).
+      const Eigen::Matrix<double, Dim, 1> mean =
+          n > 0 ? Eigen::Matrix<double, Dim, 1>(pts.rowwise().mean())
+                : Eigen::Matrix<double, Dim, 1>::Zero();
       for (int d = 0; d < Dim; ++d) {
         auto& col = cols[static_cast<std::size_t>(side * Dim + d)];
         col.assign(n + 64, 0.0f);
