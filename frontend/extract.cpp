@@ -93,7 +93,8 @@ json provenance_fpfh(const ExtractParams& params) {
   return {{"name", "fpfh: voxel grid (keypoints = voxel centroids), normals, FPFH"},
           {"voxel", pf.voxel},
           {"normal_radius", pf.normal_radius > 0 ? pf.normal_radius : 2 * pf.voxel},
-          {"fpfh_radius", pf.fpfh_radius > 0 ? pf.fpfh_radius : 5 * pf.voxel}};
+          {"fpfh_radius", pf.fpfh_radius > 0 ? pf.fpfh_radius : 5 * pf.voxel},
+          {"skip_horizontal_deg", pf.skip_horizontal_deg}};
 }
 
 json provenance_2d(const ExtractParams& params) {

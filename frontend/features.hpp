@@ -35,6 +35,10 @@ struct PipelineFpfhParams {
   double voxel = 0.3;          ///< voxel grid leaf V [m]
   double normal_radius = 0.0;  ///< normal estimation radius [m]; 0 = 2 V
   double fpfh_radius = 0.0;    ///< FPFH support radius [m]; 0 = 5 V
+  /// No keypoint (no descriptor) where the normal lies within this angle [deg] of the cloud's z
+  /// axis: ground and ceilings, whose FPFH repeats everywhere and matches anywhere (0 = keep all).
+  /// The support of the other descriptors keeps every point.
+  double skip_horizontal_deg = 0.0;
 };
 
 /// Real-valued descriptors (FPFH: 33 floats), stored contiguously.

@@ -7,6 +7,8 @@
 #include <pcl/search/kdtree.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,7 +21,8 @@ namespace verifybench {
 Features features_fpfh(const Cloud& cloud, const PipelineFpfhParams& p) {
   for (auto [v, name, zero_ok] : {std::tuple{p.voxel, "voxel", false},
                                   {p.normal_radius, "normal_radius", true},
-                                  {p.fpfh_radius, "fpfh_radius", true}}) {
+                                  {p.fpfh_radius, "fpfh_radius", true},
+                                  {p.skip_horizontal_deg, "skip_horizontal_deg", true}}) {
     if (std::isfinite(v) && (v > 0.0 || (zero_ok && v == 0.0))) continue;
     std::ostringstream msg;
     msg << "FPFH pipeline: " << name << " = " << v << " is invalid; expected a finite value > 0"
@@ -28,6 +31,14 @@ Features features_fpfh(const Cloud& cloud, const PipelineFpfhParams& p) {
   }
   const double normal_radius = p.normal_radius > 0 ? p.normal_radius : 2.0 * p.voxel;
   const double fpfh_radius = p.fpfh_radius > 0 ? p.fpfh_radius : 5.0 * p.voxel;
+  if (p.skip_horizontal_deg > 90.0) {
+    throw std::invalid_argument("FPFH pipeline: skip_horizontal_deg = " +
+                                std::to_string(p.skip_horizontal_deg) + " is not in [0, 90]");
+  }
+  // |n_z| > cos(angle): the normal within `angle` of vertical (either sign: normals are unoriented).
+  const double min_vertical = p.skip_horizontal_deg > 0
+                                  ? std::cos(p.skip_horizontal_deg * M_PI / 180.0)
+                                  : std::numeric_limits<double>::infinity();
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   using PointT = pcl::PointXYZ;
   Features f;
@@ -57,16 +68,22 @@ Features features_fpfh(const Cloud& cloud, const PipelineFpfhParams& p) {
     est.compute(fpfh);
   }
   f.ms["fpfh"] = fpfh_clock.ms();
+  std::size_t horizontal = 0;
   for (std::size_t k = 0; k < fpfh.size(); ++k) {
     const float* h = fpfh[k].histogram;
     bool ok = std::isfinite((*normals)[k].normal_x);
     for (int j = 0; j < 33 && ok; ++j) ok = std::isfinite(h[j]);
     if (!ok) continue;  // no normal or no support: no descriptor
+    if (std::abs((*normals)[k].normal_z) > min_vertical) {
+      ++horizontal;
+      continue;
+    }
     f.real.data.insert(f.real.data.end(), h, h + 33);
     const auto& pt = (*down)[k];
     f.points.emplace_back(pt.x, pt.y, pt.z);
   }
   f.counts["descriptors"] = static_cast<double>(f.points.size());
+  f.counts["horizontal_skipped"] = static_cast<double>(horizontal);
   return f;
 }
 

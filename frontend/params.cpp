@@ -115,6 +115,12 @@ std::vector<Row> make_rows() {
   rows.push_back(param_row(&ExtractParams::pf, &PipelineFpfhParams::fpfh_radius,
                            real("fpfh-radius", "fpfh_radius_m", "M",
                                 "fpfh: FPFH support radius (0 = 5 x voxel)", 0.0, kBig)));
+  rows.push_back(param_row(
+      &ExtractParams::pf, &PipelineFpfhParams::skip_horizontal_deg,
+      real("fpfh-skip-horizontal", "fpfh_skip_horizontal_deg", "DEG",
+           "fpfh: no keypoints whose normal is within DEG of the z axis (ground, ceilings; 0 = "
+           "keep all)",
+           0.0, 90.0)));
 
   Row matching;
   matching.option = "matching";

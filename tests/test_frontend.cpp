@@ -3,6 +3,7 @@
 // extraction on a drawn scene with a known motion (the motion is recovered).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -343,6 +344,43 @@ TEST(Extract, FpfhRecoversAKnownMotionFromADrawnStreet) {
   ASSERT_TRUE(r.accepted);
   EXPECT_LT(rotation_error_deg(r.T_target_source, T), 2.0);
   EXPECT_LT(translation_error(r.T_target_source, T), 0.3);
+}
+
+// --fpfh-skip-horizontal: on a floor (z = 0) meeting a wall (x = 0), the floor's keypoints away
+// from the wall have vertical normals and get no descriptor; the wall's all keep theirs. Oracle:
+// the geometry (floor points have n = +-z, wall points n = +-x), not the code's own count.
+TEST(Extract, FpfhSkipHorizontalDropsTheFloorAndKeepsTheWall) {
+  Cloud room;
+  for (int i = 0; i <= 100; ++i) {
+    for (int j = 0; j <= 100; ++j) {
+      room.emplace_back(0.1f * i, 0.1f * j - 5.0f, 0.0f);  // floor, 10 m x 10 m
+      if (i <= 40) room.emplace_back(0.0f, 0.1f * j - 5.0f, 0.1f * i);  // wall, 4 m high
+    }
+  }
+  PipelineFpfhParams p;
+  p.voxel = 0.5;
+  const auto away_floor = [](const Features& f) {  // floor keypoints 1.5 m from the wall
+    int n = 0;
+    for (const auto& q : f.points) n += q.z() < 0.3 && q.x() > 1.5;
+    return n;
+  };
+  const auto wall = [](const Features& f) {
+    int n = 0;
+    for (const auto& q : f.points) n += q.x() < 0.3 && q.z() > 1.0;
+    return n;
+  };
+  const Features all = features_fpfh(room, p);
+  p.skip_horizontal_deg = 45;
+  const Features kept = features_fpfh(room, p);
+  EXPECT_GT(away_floor(all), 100);  // 20 x 17 voxels of floor there
+  EXPECT_EQ(away_floor(kept), 0);
+  EXPECT_GT(wall(all), 80);
+  EXPECT_EQ(wall(kept), wall(all));
+  EXPECT_EQ(kept.counts.at("horizontal_skipped") + kept.points.size(), all.points.size());
+  for (double bad : {-1.0, 90.5, std::nan("")}) {
+    p.skip_horizontal_deg = bad;
+    EXPECT_THROW(features_fpfh(room, p), std::invalid_argument) << bad;
+  }
 }
 
 // --max-matches keeps whole source keypoints, drawn by the seed, within the cap.
