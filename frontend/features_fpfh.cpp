@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <limits>
-#include <string>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,22 +18,23 @@
 namespace verifybench {
 
 Features features_fpfh(const Cloud& cloud, const PipelineFpfhParams& p) {
-  for (auto [v, name, zero_ok] : {std::tuple{p.voxel, "voxel", false},
-                                  {p.normal_radius, "normal_radius", true},
-                                  {p.fpfh_radius, "fpfh_radius", true},
-                                  {p.skip_horizontal_deg, "skip_horizontal_deg", true}}) {
-    if (std::isfinite(v) && (v > 0.0 || (zero_ok && v == 0.0))) continue;
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  const char* const kMultiple = "the default multiple of the voxel";
+  // value, name, what 0 means (nullptr: 0 is invalid), largest valid value
+  for (auto [v, name, zero, most] :
+       {std::tuple<double, const char*, const char*, double>{p.voxel, "voxel", nullptr, kNone},
+        {p.normal_radius, "normal_radius", kMultiple, kNone},
+        {p.fpfh_radius, "fpfh_radius", kMultiple, kNone},
+        {p.skip_horizontal_deg, "skip_horizontal_deg", "keep every keypoint", 90.0}}) {
+    if (std::isfinite(v) && (v > 0.0 || (zero && v == 0.0)) && v <= most) continue;
     std::ostringstream msg;
-    msg << "FPFH pipeline: " << name << " = " << v << " is invalid; expected a finite value > 0"
-        << (zero_ok ? " (0 = the default multiple of the voxel)" : "");
+    msg << "FPFH pipeline: " << name << " = " << v << " is invalid; expected a finite value > 0";
+    if (std::isfinite(most)) msg << " and <= " << most;
+    if (zero) msg << " (0 = " << zero << ")";
     throw std::invalid_argument(msg.str());
   }
   const double normal_radius = p.normal_radius > 0 ? p.normal_radius : 2.0 * p.voxel;
   const double fpfh_radius = p.fpfh_radius > 0 ? p.fpfh_radius : 5.0 * p.voxel;
-  if (p.skip_horizontal_deg > 90.0) {
-    throw std::invalid_argument("FPFH pipeline: skip_horizontal_deg = " +
-                                std::to_string(p.skip_horizontal_deg) + " is not in [0, 90]");
-  }
   // |n_z| > cos(angle): the normal within `angle` of vertical (either sign: normals are unoriented).
   const double min_vertical = p.skip_horizontal_deg > 0
                                   ? std::cos(p.skip_horizontal_deg * M_PI / 180.0)
