@@ -446,6 +446,18 @@ def plot_dimacs(reports, out_dir, stem):
     return save_figure(build_dimacs(reports), os.path.join(out_dir, f"{stem}_dimacs"))
 
 
+def plot_loops(doc, out_dir, prefix):
+    """A loop report's figures (plot_loop.py): PREFIX_trajectory_SOLVER per solver and PREFIX_pr."""
+    import plot_loop
+    if "trajectories" not in doc:
+        fail("a loop report without its 'trajectories'")
+    paths = []
+    for row in doc["summary"]:
+        paths += save_figure(plot_loop.build_trajectory(doc, row["solver"]),
+                             os.path.join(out_dir, f"{prefix}_trajectory_{row['solver']}"))
+    return paths + save_figure(plot_loop.build_pr(doc), os.path.join(out_dir, f"{prefix}_pr"))
+
+
 def main():
     parser = argparse.ArgumentParser(prog="plot_report.py", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -453,7 +465,7 @@ def main():
     parser.add_argument("--out-dir", default=None, help="default: the first report's folder")
     parser.add_argument("--name", default=None, help="file name stem of the plots")
     args = parser.parse_args()
-    reports = [report_io.load_report(TOOL, p) for p in args.reports]
+    reports = [report_io.load_report(TOOL, p, loop=True) for p in args.reports]
     kinds = {report_io.report_kind(d) for d in reports}
     if len(kinds) != 1:
         fail(f"the reports mix kinds ({', '.join(sorted(kinds))}); plot each kind on its own")
@@ -463,7 +475,18 @@ def main():
     except OSError as e:
         fail(f"{out_dir}: {e}")
     stem = args.name or os.path.splitext(os.path.basename(args.reports[0]))[0]
-    plot = {"sweep": plot_sweeps, "run": plot_dumps, "dimacs": plot_dimacs}[kinds.pop()]
+    kind = kinds.pop()
+    if kind == "loop":  # plot_loop.py's figures, one set per report
+        paths = []
+        for path, doc in zip(args.reports, reports):
+            prefix = args.name or "loop"
+            if len(reports) > 1:
+                prefix += "_" + os.path.basename(os.path.dirname(os.path.abspath(path)))
+            paths += plot_loops(doc, out_dir, prefix)
+        for path in paths:
+            print(path)
+        return
+    plot = {"sweep": plot_sweeps, "run": plot_dumps, "dimacs": plot_dimacs}[kind]
     for path in plot(reports, out_dir, stem):
         print(path)
 

@@ -16,8 +16,10 @@ def fail(tool, msg):
     sys.exit(2)
 
 
-def load_report(tool, path):
-    """The parsed schema_version 1 report at `path`; anything else ends the script with a message."""
+def load_report(tool, path, loop=False):
+    """The parsed schema_version 1 report at `path`; anything else ends the script with a message.
+    loop=True also takes a loop report (`verifybench loop`'s loop.json: kind 'loop', a 'summary'
+    list of one row per solver); the other tools refuse it by name."""
     try:
         with open(path) as f:
             doc = json.load(f)
@@ -25,6 +27,13 @@ def load_report(tool, path):
         fail(tool, f"{path}: {e}")
     if not isinstance(doc, dict) or doc.get("schema_version") != 1:
         fail(tool, f"{path}: not a schema_version 1 verifybench report")
+    if doc.get("kind") == "loop":
+        if not loop:
+            fail(tool, f"{path}: a loop report (verifybench loop); {tool} reads sweep, run and "
+                       "dimacs reports (summarize.py and plot_report.py read loop reports)")
+        if not isinstance(doc.get("summary"), list):
+            fail(tool, f"{path}: a loop report without its 'summary' list")
+        return doc
     if not isinstance(doc.get("results"), list) or not isinstance(doc.get("aggregates"), list):
         fail(tool, f"{path}: no 'results' and 'aggregates' lists")
     return doc
@@ -40,7 +49,9 @@ def parser(tool, doc):
 
 
 def report_kind(doc):
-    """'sweep' (synthetic robustness sweep), 'run' (solvers on a dump) or 'dimacs'."""
+    """'sweep' (synthetic robustness sweep), 'run' (solvers on a dump), 'dimacs' or 'loop'."""
+    if doc.get("kind") == "loop":
+        return "loop"
     parameters = doc.get("parameters", {})
     if parameters.get("mode") == "dimacs":
         return "dimacs"

@@ -544,3 +544,29 @@ def test_clis_write_png_and_pdf(paths, out, loop_dir):
                             str(plots / "dec.png")], capture_output=True, text=True).stdout
     assert lines.rstrip().endswith(f"plot: {plots / 'dec.png'}")
     png_size(plots / "dec.png")
+
+
+def test_report_tools_read_a_loop_report(out, loop_dir, loop_doc):
+    """plot_report.py draws plot_loop.py's figures from loop.json; summarize.py prints one row per
+    solver whose TP / FP are the accepted closures counted here from the report's closure rows."""
+    def run(*args):
+        return subprocess.run([PY, *args], capture_output=True, text=True, timeout=120)
+
+    plots = out / "from_plot_report"
+    r = run(os.path.join(REPORTS, "plot_report.py"), str(loop_dir / "loop.json"), "--out-dir", str(plots))
+    assert r.returncode == 0, r.stderr
+    solvers = [s["solver"] for s in loop_doc["summary"]]
+    assert r.stdout.split() == [str(plots / f"loop_trajectory_{s}.{e}") for s in solvers
+                                for e in ("png", "pdf")] + [str(plots / f"loop_pr.{e}") for e in ("png", "pdf")]
+    r = run(os.path.join(REPORTS, "summarize.py"), str(loop_dir / "loop.json"))
+    assert r.returncode == 0, r.stderr
+    header, _, *rows = r.stdout.splitlines()
+    names = [c.strip() for c in header.strip("|").split("|")]
+    assert len(rows) == len(solvers)
+    for line in rows:
+        cells = dict(zip(names, (c.strip() for c in line.strip("|").split("|"))))
+        mine = [c for c in loop_doc["closures"] if c["solver"] == cells["solver"] and c["accepted"]]
+        assert int(cells["TP"]) == sum(c["correct"] for c in mine), cells
+        assert int(cells["FP"]) == sum(not c["correct"] for c in mine), cells
+    r = run(os.path.join(REPORTS, "decisions.py"), str(loop_dir / "loop.json"))
+    assert r.returncode == 2 and "a loop report" in r.stderr, r.stderr
