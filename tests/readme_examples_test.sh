@@ -14,12 +14,15 @@ rm -rf "$work" && mkdir -p "$work/repo"
 ln -s "$build" "$work/repo/build"
 ln -s "$src/reports" "$work/repo/reports"
 ln -s "$src/scripts" "$work/repo/scripts"
+for f in CMakeLists.txt pyproject.toml setup.py; do ln -s "$src/$f" "$work/repo/$f"; done  # pip install .
+mkdir -p "$work/home"  # ~ in the commands (~/vb, ~/vb-venv)
 if [ -d "$src/../shared" ]; then ln -s "$(cd "$src/../shared" && pwd)" "$work/shared"; fi
 skip_reason() {  # why a command is not run here, or nothing
   case "$1" in
     scripts/run*|scripts/test*) echo "the two commands: .ci/run runs both" ;;
     cmake\ -S*|cmake\ --build*) echo "a build: CI builds" ;;
-    cmake\ --install*|*pip\ install*|*-m\ venv*|'PYTHONPATH=~/vb'*) echo "installs: ctest install_consumer and python_install" ;;
+    'cmake --install build'|'cmake --install build --prefix /'*) echo "an install into the system: ctest install_consumer installs the same tree into a scratch prefix" ;;
+    '~/vb-venv/bin/pip install'*) echo "a first build from scratch (11 min): the next command is the same install on the built tree" ;;
     scripts/parallel-sweep*|scripts/slurm-sweep*) echo "a cluster job: ctest cluster_parallel and cluster_slurm" ;;
     *'$KITTI'*) [ -d "$work/shared/data/balm_realworld" ] || echo "needs ../shared/data" ;;
     *../shared/*) [ -d "$work/shared" ] || echo "needs ../shared/data" ;;
@@ -27,7 +30,7 @@ skip_reason() {  # why a command is not run here, or nothing
 }
 # The commands: comments dropped, continued lines joined; a for ... done block is one command.
 awk '/^```bash/{f=1; next} /^```/{f=0} f' "$src/README.md" |
-  sed -e 's/[[:space:]]#.*$//' -e 's/^#.*$//' |
+  sed -e 's/[[:space:]]#.*$//' -e 's/^#.*$//' -e 's/[[:space:]]*$//' |
   awk '{ if (sub(/\\$/, "")) { buf = buf $0 " " } else { print buf $0; buf = "" } }' |
   awk 'NF { if (loop) { cmd = cmd "\n" $0; if ($0 ~ /done/) { print cmd; print "\x1e"; loop = 0 } }
             else if ($1 == "for") { cmd = $0; loop = 1 } else { print; print "\x1e" } }' \
@@ -42,7 +45,7 @@ cd "$work/repo"
 ran=0 skipped=0 failed=0
 script=$work/session.sh
 : > "$script"
-echo "export KITTI='$work/kitti'" >> "$script"
+echo "export KITTI='$work/kitti' HOME='$work/home'" >> "$script"
 while IFS= read -r -d $'\x1e' cmd; do
   cmd=${cmd#$'\n'}
   cmd=${cmd%$'\n'}
