@@ -94,12 +94,11 @@ void fit_and_score(Calibration& c, const std::vector<int>& scores, int observed,
 
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
-                      const SolverParams& params, int observed, const Deadline& budget) {
+                      const SolverParams& params, const AcceptParams& accept, int observed,
+                      const Deadline& budget) {
   StopWatch clock;
-  const int draws = params.accept.null_draws;
-  const double alpha = params.accept.alpha;
-  SolverParams inner = params;
-  inner.accept.rule = AcceptParams::Rule::count;
+  const int draws = accept.null_draws;
+  const double alpha = accept.alpha;
   Calibration c;
   // The grouping of the targets (a sort) is the same for every permuted set; a set itself is
   // rebuilt where it is needed again (an O(n) gather, cheaper than keeping K sets in memory).
@@ -125,7 +124,7 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
       previous_parts = parts;
       std::vector<int> bounds;
       for (int k = 0; k < draws; ++k) {
-        const std::optional<int> b = solver.score_bound(null_set(k), inner, part_size);
+        const std::optional<int> b = solver.score_bound(null_set(k), params, part_size);
         if (!b || *b >= observed) break;
         bounds.push_back(*b);
         if (static_cast<int>(bounds.size()) < kMinDrawsToAccept) continue;
@@ -154,14 +153,14 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                                 {resolve_threads(params.threads), draws, fit})))
                           : 1;
   auto draw_params = [&](int k) {
-    SolverParams p = inner;
-    p.time_limit_s = std::min(inner.time_limit_s, budget.limit_s());
+    SolverParams p = params;
+    p.time_limit_s = std::min(params.time_limit_s, budget.limit_s());
     p.seed = derive_seed(derive_seed(params.seed, {kNullStream, std::uint64_t(k)}), {1});
     if (workers > 1) p.threads = 1;
     return p;
   };
   // Past K draws, while the range of p holds alpha, up to `most` in all.
-  const int most = std::max(draws, params.accept.max_null_draws);
+  const int most = std::max(draws, accept.max_null_draws);
   std::vector<int> scores;
   // Takes draw k's result; true when no further draw can change the decision.
   auto take = [&](int k, const Result<Dim>& r) {
@@ -242,12 +241,12 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
 
 template <int Dim>
 void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
-                       const Calibration& calibration, const SolverParams& params) {
-  if (params.accept.rule != AcceptParams::Rule::pvalue || result.status == Status::error) return;
-  result.accepted = calibration.p_value < params.accept.alpha && pins_motion(corr, result.inliers);
-  if (result.accepted && params.accept.prior_gate > 0.0) {
+                       const Calibration& calibration, const AcceptParams& accept) {
+  if (accept.rule != AcceptParams::Rule::pvalue || result.status == Status::error) return;
+  result.accepted = calibration.p_value < accept.alpha && pins_motion(corr, result.inliers);
+  if (result.accepted && accept.prior_gate > 0.0) {
     if (const auto d2 = prior_distance2(corr, result.T_target_source)) {
-      result.accepted = inside_prior_gate<Dim>(*d2, params.accept.prior_gate);
+      result.accepted = inside_prior_gate<Dim>(*d2, accept.prior_gate);
     }
   }
   if (result.status != Status::time_limit) {
@@ -261,9 +260,10 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
                                                  std::uint64_t);                              \
   template Correspondences<D> permute_targets<D>(const Correspondences<D>&, std::uint64_t); \
   template Calibration calibrate<D>(const Solver&, const Correspondences<D>&,               \
-                                    const SolverParams&, int, const Deadline&);             \
+                                    const SolverParams&, const AcceptParams&, int,          \
+                                    const Deadline&);                                       \
   template void decide_calibrated<D>(Result<D>&, const Correspondences<D>&, const Calibration&, \
-                                     const SolverParams&);
+                                     const AcceptParams&);
 VB_INSTANTIATE(2)
 VB_INSTANTIATE(3)
 #undef VB_INSTANTIATE

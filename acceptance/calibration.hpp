@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "acceptance/accept_params.hpp"
 #include "acceptance/null_model.hpp"
 #include "core/correspondences.hpp"
 #include "core/deadline.hpp"
@@ -54,13 +55,13 @@ struct Calibration {
   bool budget_exhausted = false;
 };
 
-/// Runs `solver` on up to params.accept.null_draws = K permuted sets (draw k from
+/// Runs `solver` on up to accept.null_draws = K permuted sets (draw k from
 /// derive_seed(params.seed, {kNullStream, k}); the solver's own seed derived the same way) and
 /// scores `observed` against them. Stops early where the decision of all K draws is already known:
 /// at the first draw that reaches `observed` (p >= 2 / (K + 1) >= alpha from then on; a single
 /// such draw leaves p = 1), or after kMinDrawsToAccept draws when even cautious_fit() puts
 /// `observed` below alpha. After K draws, where the range of p [optimistic_fit, cautious_fit]
-/// still holds alpha, draws on until it does not or params.accept.max_null_draws ran; the plain
+/// still holds alpha, draws on until it does not or accept.max_null_draws ran; the plain
 /// fit of all the draws then decides. null.draws says how many ran. A null solve stopped by the
 /// time limit counts with its proven
 /// upper bound when it has one (clique solvers), so a limit never makes chance look smaller.
@@ -76,16 +77,16 @@ struct Calibration {
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
-                      const SolverParams& params, int observed,
+                      const SolverParams& params, const AcceptParams& accept, int observed,
                       const Deadline& budget = Deadline::never());
 
 /// Applies the rule to a finished solve: under `count` leaves the solver's decision; under
 /// `pvalue` accepts when p < alpha, the inliers pin down a motion (pins_motion) and, where the set
-/// carries a pose prior and params.accept.prior_gate > 0, the fitted motion is inside the prior's
+/// carries a pose prior and accept.prior_gate > 0, the fitted motion is inside the prior's
 /// gate (prior_gate.hpp); and sets status ok / rejected to match (time_limit and error stay).
 template <int Dim>
 void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
-                       const Calibration& calibration, const SolverParams& params);
+                       const Calibration& calibration, const AcceptParams& accept);
 
 /// The screen's levels: score bounds by parts of these many correspondences, coarse (cheap,
 /// loose) first. Parts of up to 64 are solved exactly on one word per row (clique_number_bound):

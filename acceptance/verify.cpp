@@ -9,18 +9,20 @@ namespace verifybench {
 
 template <int Dim>
 Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
-                         const SolverParams& params) {
+                         const SolverParams& params, const AcceptParams& accept) {
   Verification<Dim> v;
+  v.rule = accept.rule;
   // One budget for the pair: the solve, then whatever is left for the calibrated rule's draws.
   const Deadline budget(params.time_limit_s);
   StopWatch clock;
   v.result = solver.solve(corr, params);
   v.solve_ms = clock.ms();
-  if (params.accept.rule == AcceptParams::Rule::pvalue && v.result.status != Status::error) {
+  if (accept.rule == AcceptParams::Rule::pvalue && v.result.status != Status::error) {
     try {
       v.calibration =
-          calibrate(solver, corr, params, static_cast<int>(v.result.inliers.size()), budget);
-      decide_calibrated(v.result, corr, *v.calibration, params);
+          calibrate(solver, corr, params, accept,
+                                static_cast<int>(v.result.inliers.size()), budget);
+      decide_calibrated(v.result, corr, *v.calibration, accept);
     } catch (const std::exception& e) {
       v.calibration.reset();
       v.result.status = Status::error;
@@ -33,7 +35,9 @@ Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
   return v;
 }
 
-template Verification<2> verify<2>(const Solver&, const Correspondences<2>&, const SolverParams&);
-template Verification<3> verify<3>(const Solver&, const Correspondences<3>&, const SolverParams&);
+template Verification<2> verify<2>(const Solver&, const Correspondences<2>&, const SolverParams&,
+                                   const AcceptParams&);
+template Verification<3> verify<3>(const Solver&, const Correspondences<3>&, const SolverParams&,
+                                   const AcceptParams&);
 
 }  // namespace verifybench

@@ -6,7 +6,8 @@
 // set carries a prior (prior_gate.hpp). params.time_limit_s is the pair's budget: the solve takes
 // what it needs of it (its own limit), and the calibrated rule's null solves share the rest
 // (calibration.hpp: budget_exhausted marks a decision more time could change). The result is
-// typed: the solver's Result, the calibration when there was one, the prior's d^2.
+// typed: the solver's Result, the calibration when there was one, the prior's d^2. The accept
+// rule's settings (accept_params.hpp) are verify's alone: solvers never see them.
 #include <optional>
 
 #include "acceptance/calibration.hpp"
@@ -20,12 +21,13 @@ struct Verification {
   std::optional<Calibration> calibration;  ///< pvalue rule, when the solve did not fail
   std::optional<double> prior_d2;          ///< d^2 of the motion against the set's prior
   double solve_ms = 0.0;                   ///< the solver's own call, wall time
+  AcceptParams::Rule rule = AcceptParams::Rule::pvalue;  ///< the rule that decided
 };
 
 /// Never throws for a solver's or a calibration's failure: they come back as Status::error with
 /// the message.
 template <int Dim>
 Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
-                         const SolverParams& params);
+                         const SolverParams& params, const AcceptParams& accept);
 
 }  // namespace verifybench

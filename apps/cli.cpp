@@ -12,6 +12,8 @@ void add_solver_options(Options& o, const SolverOptionDefaults& d) {
   o.group("solvers").add("solvers", "A,B", "clique,ransac",
                          "solvers to run (see `verifybench list`)");
   add_rows(o, common_param_family().fields, d.params);
+  o.group("accept rule");
+  add_rows(o, accept_param_rows(), d.accept);
   for (const ParamFamily& family : param_families()) {
     o.group(family.title);
     add_rows(o, family.fields, d.params);
@@ -34,6 +36,17 @@ SolverParams solver_params(const Options& o, const SolverParams& defaults) {
     throw UsageError(e.what());
   }
   return p;
+}
+
+AcceptParams accept_params(const Options& o, const AcceptParams& defaults) {
+  AcceptParams a = defaults;
+  read_rows(o, accept_param_rows(), a);
+  try {
+    a.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return a;
 }
 
 SuccessCriteria criteria(const Options& o) {
@@ -60,8 +73,9 @@ std::vector<std::string> solver_names(const Options& o) {
   return names;
 }
 
-nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c) {
+nlohmann::json params_json(const SolverParams& p, const AcceptParams& a, const SuccessCriteria& c) {
   nlohmann::json j = rows_json(solver_param_rows(), p);
+  j.update(rows_json(accept_param_rows(), a));
   j["accept_threshold_2d"] = p.accept_threshold(2);
   j["accept_threshold_3d"] = p.accept_threshold(3);
   j["success_criteria"] = {{"max_rotation_error_deg", c.max_rotation_error_deg},

@@ -11,6 +11,7 @@
 #include "reports/record.hpp"
 #include "reports/report.hpp"
 #include "reports/shard.hpp"
+#include "acceptance/accept_params.hpp"
 #include "solvers/params.hpp"
 
 namespace verifybench::cli {
@@ -21,18 +22,22 @@ struct SolverOptionDefaults {
   SolverParams params;  ///< the defaults --help shows and the options start from
   std::string out_value = "FILE.json";
   std::string out_help = "report path (required; written atomically; - for stdout)";
+  AcceptParams accept;  ///< the accept rule's options' defaults, likewise
 };
 void add_solver_options(Options& o, const SolverOptionDefaults& defaults = {});
 /// The rows (solvers/params.hpp) read onto `defaults` (the same as add_solver_options'), --seed.
 SolverParams solver_params(const Options& o, const SolverParams& defaults = {});
+/// The accept rule's rows (acceptance/accept_params.hpp) read onto `defaults`, validated.
+AcceptParams accept_params(const Options& o, const AcceptParams& defaults = {});
 SuccessCriteria criteria(const Options& o);
 /// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
 std::vector<std::string> solver_names(const Options& o);
 /// --out, checked before any work (check_report_path): a UsageError when it could not be written;
 /// "-" is stdout (the report goes there, progress and summaries stay on stderr).
 std::string report_path(const Options& o);
-/// The parameters block of a report: common fields, every family field, the success criteria.
-nlohmann::json params_json(const SolverParams& p, const SuccessCriteria& c);
+/// The parameters block of a report: common fields, the accept rule's, every family field, the
+/// success criteria.
+nlohmann::json params_json(const SolverParams& p, const AcceptParams& a, const SuccessCriteria& c);
 /// --prior-rot-deg / --prior-trans, and their values: both > 0 or both 0; radians and metres.
 void add_prior_options(Options& o, const std::string& what);
 std::pair<double, double> prior_sigmas(const Options& o);

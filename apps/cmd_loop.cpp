@@ -281,6 +281,7 @@ LoopConfig loop_config(const Options& o) {
   c.loop_sigma_rot_deg = o.real("loop-sigma-rot-deg", 1e-6, 180.0);
   c.solvers = cli::solver_names(o);
   c.params = cli::solver_params(o, loop_solver_defaults());
+  c.accept = cli::accept_params(o);
   c.seed = c.params.seed;
   c.threads = c.params.threads;
   c.params.threads = 1;  // maps are built in parallel; each solve on one thread
@@ -294,7 +295,7 @@ LoopConfig loop_config(const Options& o) {
 }
 
 nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
-  nlohmann::json p = cli::params_json(c.params, cli::criteria(o));
+  nlohmann::json p = cli::params_json(c.params, c.accept, cli::criteria(o));
   p["threads"] = c.threads;
   p["loop"] = {{"trajectory", o.text("trajectory")},
                {"sequence", c.sequence_dir},

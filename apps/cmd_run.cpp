@@ -30,6 +30,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const std::string dir = o.required("dump");
   const auto names = cli::solver_names(o);
   const SolverParams params = cli::solver_params(o);
+  const AcceptParams accept = cli::accept_params(o);
   const SuccessCriteria crit = cli::criteria(o);
   const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
   const Shard shard = cli::shard(o);
@@ -67,11 +68,12 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
         }
         Progress progress("run", shard.owned(units), !o.flag("quiet"));
         return run_on_set(
-            names, s, dir, trials, params.seed, params, crit, [&] { progress.advance(); }, shard);
+            names, s, dir, trials, params.seed, params, accept, crit, [&] { progress.advance(); },
+            shard);
       },
       dump.set);
   if (!o.flag("quiet")) cli::print_point(rows);
-  nlohmann::json parameters = cli::params_json(params, crit);
+  nlohmann::json parameters = cli::params_json(params, accept, crit);
   parameters["run"] = {
       {"dump", dir},
       {"trials", trials},

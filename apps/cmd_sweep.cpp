@@ -86,12 +86,13 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   check_generator(c.shape.kind, c.dims);
   std::tie(c.prior_sigma_rot, c.prior_sigma_trans) = cli::prior_sigmas(o);
   c.params = cli::solver_params(o);
+  c.accept = cli::accept_params(o);
   c.seed = c.params.seed;
   c.criteria = cli::criteria(o);
   c.shard = cli::shard(o);
   const std::string out = cli::report_path(o);
 
-  nlohmann::json parameters = cli::params_json(c.params, c.criteria);
+  nlohmann::json parameters = cli::params_json(c.params, c.accept, c.criteria);
   parameters["sweep"] = {{"generator", c.shape.kind},
                          {"generator_shape",
                           {{"planar_motion", c.shape.planar_motion},

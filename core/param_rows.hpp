@@ -105,6 +105,39 @@ ParamRow<P> param_row(S P::*outer, T S::*member, ParamRow<P> row) {
   return row;
 }
 
+/// The rows of a struct as rows of the struct that holds it at `member` (the same options, keys,
+/// ranges and help): several owners' rows read through one table (the Python binding's keywords).
+template <class Outer, class Inner>
+std::vector<ParamRow<Outer>> lift_rows(const std::vector<ParamRow<Inner>>& rows,
+                                       Inner Outer::*member) {
+  std::vector<ParamRow<Outer>> out;
+  for (const ParamRow<Inner>& r : rows) {
+    ParamRow<Outer> o;
+    o.option = r.option;
+    o.key = r.key;
+    o.value_name = r.value_name;
+    o.help = r.help;
+    o.kind = static_cast<typename ParamRow<Outer>::Kind>(r.kind);
+    o.min = r.min;
+    o.max = r.max;
+    o.expected = r.expected;
+    o.infinite_ok = r.infinite_ok;
+    o.default_note = r.default_note;
+    if (r.get) o.get = [g = r.get, member](const Outer& p) { return g(p.*member); };
+    if (r.set) o.set = [s = r.set, member](Outer& p, double v) { s(p.*member, v); };
+    if (r.report) o.report = [g = r.report, member](const Outer& p) { return g(p.*member); };
+    if (r.get_text) {
+      o.get_text = [g = r.get_text, member](const Outer& p) { return g(p.*member); };
+    }
+    if (r.set_text) {
+      o.set_text = [s = r.set_text, member](Outer& p, const std::string& v) { s(p.*member, v); };
+    }
+    if (r.when_absent) o.when_absent = [w = r.when_absent, member](Outer& p) { w(p.*member); };
+    out.push_back(std::move(o));
+  }
+  return out;
+}
+
 /// Every row's check on `p`.
 template <class P>
 void check_rows(const std::vector<ParamRow<P>>& rows, const P& p) {

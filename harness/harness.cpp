@@ -18,7 +18,7 @@ TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_n
   const Result<Dim>& result = v.result;
   TrialRecord r;
   r.time_ms = v.solve_ms;
-  r.accept_rule = to_string(params.accept.rule);
+  r.accept_rule = to_string(v.rule);
   r.expected_positive = set.truth.positive;
   if (const auto& c = v.calibration) {
     r.p_value = c->p_value;
@@ -80,8 +80,8 @@ TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_n
 template <int Dim>
 TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
                      const LabeledSet<Dim>& set, const SolverParams& params,
-                     const SuccessCriteria& criteria) {
-  return trial_record(verify(solver, set.corr, params), solver_name, set, params, criteria);
+                     const AcceptParams& accept, const SuccessCriteria& criteria) {
+  return trial_record(verify(solver, set.corr, params, accept), solver_name, set, params, criteria);
 }
 
 namespace {
@@ -123,7 +123,8 @@ void sweep_point(const SweepConfig& config, double ratio, long long first_unit,
       SolverParams params = config.params;
       params.seed = derive_seed(seeds[k], {1});
       for (std::size_t s = 0; s < solvers.size(); ++s) {
-        TrialRecord r = evaluate(*solvers[s], config.solvers[s], sets[k], params, config.criteria);
+        TrialRecord r = evaluate(*solvers[s], config.solvers[s], sets[k], params, config.accept,
+                                 config.criteria);
         r.dataset = "synthetic";
         r.generator = sp.kind;
         r.outlier_ratio = ratio;
@@ -165,7 +166,7 @@ template <int Dim>
 std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
                                     const LabeledSet<Dim>& set, const std::string& dataset,
                                     int trials, std::uint64_t seed, const SolverParams& params,
-                                    const SuccessCriteria& criteria,
+                                    const AcceptParams& accept, const SuccessCriteria& criteria,
                                     const TrialProgress& on_trial, const Shard& shard) {
   std::vector<TrialRecord> rows;
   for (std::size_t s = 0; s < solvers.size(); ++s) {
@@ -175,7 +176,7 @@ std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
       if (!shard.owns(static_cast<long long>(s) * trials + t)) continue;
       SolverParams p = params;
       p.seed = derive_seed(seed, {std::uint64_t(t)});
-      TrialRecord r = evaluate(*solver, name, set, p, criteria);
+      TrialRecord r = evaluate(*solver, name, set, p, accept, criteria);
       r.dataset = dataset;
       r.trial = t;
       rows.push_back(std::move(r));
@@ -228,18 +229,20 @@ template TrialRecord trial_record<3>(const Verification<3>&, const std::string&,
                                      const LabeledSet<3>&, const SolverParams&,
                                      const SuccessCriteria&);
 template TrialRecord evaluate<2>(const Solver&, const std::string&, const LabeledSet<2>&,
-                                 const SolverParams&, const SuccessCriteria&);
+                                 const SolverParams&, const AcceptParams&, const SuccessCriteria&);
 template TrialRecord evaluate<3>(const Solver&, const std::string&, const LabeledSet<3>&,
-                                 const SolverParams&, const SuccessCriteria&);
+                                 const SolverParams&, const AcceptParams&, const SuccessCriteria&);
 template std::vector<TrialRecord> run_on_set<2>(const std::vector<std::string>&,
                                                 const LabeledSet<2>&, const std::string&, int,
                                                 std::uint64_t, const SolverParams&,
-                                                const SuccessCriteria&, const TrialProgress&,
+                                                const AcceptParams&, const SuccessCriteria&,
+                                                const TrialProgress&,
                                                 const Shard&);
 template std::vector<TrialRecord> run_on_set<3>(const std::vector<std::string>&,
                                                 const LabeledSet<3>&, const std::string&, int,
                                                 std::uint64_t, const SolverParams&,
-                                                const SuccessCriteria&, const TrialProgress&,
+                                                const AcceptParams&, const SuccessCriteria&,
+                                                const TrialProgress&,
                                                 const Shard&);
 
 }  // namespace verifybench

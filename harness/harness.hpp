@@ -27,7 +27,7 @@ TrialRecord trial_record(const Verification<Dim>& verification, const std::strin
 template <int Dim>
 TrialRecord evaluate(const Solver& solver, const std::string& solver_name,
                      const LabeledSet<Dim>& set, const SolverParams& params,
-                     const SuccessCriteria& criteria);
+                     const AcceptParams& accept, const SuccessCriteria& criteria);
 
 struct SweepConfig {
   std::vector<std::string> solvers{"clique", "ransac"};
@@ -47,6 +47,7 @@ struct SweepConfig {
   bool negatives = false;
   std::uint64_t seed = 1;
   SolverParams params;
+  AcceptParams accept;
   SuccessCriteria criteria;
   /// Runs only this slice of the sets; set (dim index d, ratio index r, trial t) is unit
   /// (d * ratios + r) * trials + t.
@@ -75,7 +76,7 @@ template <int Dim>
 std::vector<TrialRecord> run_on_set(const std::vector<std::string>& solvers,
                                     const LabeledSet<Dim>& set, const std::string& dataset,
                                     int trials, std::uint64_t seed, const SolverParams& params,
-                                    const SuccessCriteria& criteria,
+                                    const AcceptParams& accept, const SuccessCriteria& criteria,
                                     const TrialProgress& on_trial = {}, const Shard& shard = {});
 
 /// Runs each named clique algorithm once on `g` (DIMACS mode): one row per algorithm, its clique

@@ -191,7 +191,7 @@ std::string loop_markdown(const LoopConfig& config, const LoopRun& run) {
   std::ostringstream md;
   md << "# Loop closure: " << run.maps.size() << " local maps, " << run.true_closures.size()
      << " true closures, " << run.candidates.size() << " candidates (pipeline "
-     << config.extract.pipeline << ", accept rule " << to_string(config.params.accept.rule)
+     << config.extract.pipeline << ", accept rule " << to_string(config.accept.rule)
      << ")\n\n";
   md << "Table I: loop-closure validation\n\n";
   md << "| solver | accepted | TP | FP | FN | precision | recall | F1 | max recall @ P=1 | "

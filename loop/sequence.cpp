@@ -94,6 +94,7 @@ void LoopConfig::validate() const {
   drift.validate();
   dense.validate();
   params.validate();
+  accept.validate();
   if (!source) {
     world.validate();
     lidar.validate();
@@ -296,7 +297,7 @@ Dump pair_correspondences(const LoopConfig& config, const MapsAndFeatures& mf, c
 /// Verification, one solver on one pair's correspondences: the harness's row (verify, then
 /// trial_record) and the solver's motion lifted to SE(3); no correspondence is a rejection.
 void solve_pair(Solver& solver, const std::string& name, Dump& dump, bool is_true,
-                const SolverParams& sp, ClosureRow& row) {
+                const SolverParams& sp, const AcceptParams& accept, ClosureRow& row) {
   std::visit(
       [&](auto& set) {
         constexpr int Dim = std::decay_t<decltype(set.corr.source)>::RowsAtCompileTime;
@@ -308,7 +309,7 @@ void solve_pair(Solver& solver, const std::string& name, Dump& dump, bool is_tru
           row.record.message = "no correspondence";
           return;
         }
-        const Verification<Dim> v = verify(solver, set.corr, sp);
+        const Verification<Dim> v = verify(solver, set.corr, sp, accept);
         row.record = trial_record(v, name, set, sp, SuccessCriteria{});
         if constexpr (Dim == 2) {
           row.T_estimate = lift_planar(v.result.T_target_source);
@@ -376,7 +377,7 @@ void verify_candidates(const LoopConfig& config, const MapsAndFeatures& mf, cons
       row.overlap = overlap;
       row.true_closure = is_true;
       row.T_truth = T_truth;
-      solve_pair(*solvers[s], config.solvers[s], dump, is_true, sp, row);
+      solve_pair(*solvers[s], config.solvers[s], dump, is_true, sp, config.accept, row);
       row.record.dataset = "maps " + std::to_string(c.query) + " -> " + std::to_string(c.match);
       judge_row(config, q, m, is_true, row);
       run.rows.push_back(std::move(row));

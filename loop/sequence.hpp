@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "acceptance/accept_params.hpp"
 #include "datasets/trajectory.hpp"
 #include "frontend/extract.hpp"
 #include "frontend/scan_odometry.hpp"
@@ -81,6 +82,7 @@ struct LoopConfig {
   double pose_tolerance = 6.0;    ///< [m] a correct closure's relative translation error
   std::vector<std::string> solvers{"clique", "ransac"};
   SolverParams params;
+  AcceptParams accept;
   double loop_sigma_trans = 0.5;    ///< [m] loop edges in the pose graph
   double loop_sigma_rot_deg = 2.0;  ///< [deg]
   /// Each candidate pair carries odometry's guess of its motion as a pose prior (covariance

@@ -61,34 +61,6 @@ ParamFamily make_common_family() {
   inlier.when_absent = [](SolverParams& p) { p.inlier_threshold = p.eps; };
   inlier.default_note = "eps";
   rows.push_back(inlier);
-  ParamField accept = number("accept", "accept_rule", "RULE",
-                             "accept rule: pvalue (p < alpha against a permutation null of the pair) "
-                             "or count (inliers >= --min-inliers, the paper's rule)",
-                             K::text, 0, 0, "pvalue or count");
-  accept.get_text = [](const SolverParams& p) { return std::string(to_string(p.accept.rule)); };
-  accept.set_text = [](SolverParams& p, const std::string& v) {
-    p.accept.rule = parse_accept_rule(v);
-  };
-  rows.push_back(accept);
-  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::alpha,
-                           number("alpha", "alpha", "A", "pvalue rule: accept when p < A", K::real,
-                                  1e-300, 0.999999, "a value in (0, 1)")));
-  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::null_draws,
-                           number("null-draws", "null_draws", "K",
-                                  "pvalue rule: permuted sets the null is fitted on (each one more "
-                                  "solve)",
-                                  K::integer, 2, 100000, "an integer >= 2")));
-  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::max_null_draws,
-                           number("max-null-draws", "max_null_draws", "K",
-                                  "pvalue rule: where the range of p after --null-draws draws still "
-                                  "holds alpha, draw on until it does not or K draws ran in all "
-                                  "(<= --null-draws: never)",
-                                  K::integer, 0, 100000, "an integer >= 0")));
-  rows.push_back(param_row(&SolverParams::accept, &AcceptParams::prior_gate,
-                           number("prior-gate", "prior_gate", "C",
-                                  "pvalue rule, sets with a pose prior: accept only motions inside "
-                                  "the prior's chi-square gate at confidence C (0 = no gate)",
-                                  K::real, 0.0, 0.999999999, "a value in [0, 1) (0 = no gate)")));
   rows.push_back(param_row(&SolverParams::min_inliers,
                            number("min-inliers", "min_inliers", "K",
                                   "count rule: accept when inliers >= K; 0 = paper default (5 in "
@@ -146,27 +118,12 @@ void require(bool ok, const std::string& field, T value, const std::string& expe
 
 }  // namespace
 
-const char* to_string(AcceptParams::Rule rule) {
-  return rule == AcceptParams::Rule::count ? "count" : "pvalue";
-}
-
-AcceptParams::Rule parse_accept_rule(const std::string& name) {
-  if (name == "pvalue") return AcceptParams::Rule::pvalue;
-  if (name == "count") return AcceptParams::Rule::count;
-  throw std::invalid_argument("accept rule '" + name + "' is unknown (known: pvalue, count)");
-}
-
 void SolverParams::validate() const {
   require(eps > 0.0 && std::isfinite(eps), "eps", eps, "a finite value > 0");
   require(inlier_threshold > 0.0 && std::isfinite(inlier_threshold), "inlier_threshold",
           inlier_threshold, "a finite value > 0");
   require(min_inliers >= 0, "min_inliers", min_inliers, "an integer >= 0 (0 = paper default)");
   require(time_limit_s > 0.0, "time_limit_s", time_limit_s, "a value > 0");
-  require(accept.alpha > 0.0 && accept.alpha < 1.0, "alpha", accept.alpha, "a value in (0, 1)");
-  require(accept.null_draws >= 2, "null_draws", accept.null_draws, "an integer >= 2");
-  require(accept.prior_gate >= 0.0 && accept.prior_gate < 1.0, "prior_gate", accept.prior_gate,
-          "a value in [0, 1) (0 = no gate)");
-  require(accept.max_null_draws >= 0, "max_null_draws", accept.max_null_draws, "an integer >= 0");
   require(threads >= 0, "threads", threads, "an integer >= 0 (0 = all cores)");
   for (const ParamFamily& family : param_families()) {
     for (const ParamField& f : family.fields) {

@@ -59,25 +59,6 @@ struct Sc2Params {
   int refine_iterations = 20;  ///< reweighted refits of the final motion at most
 };
 
-/// How a pair is accepted as a loop closure (issue #13). `count` is the paper's rule (|inliers| >=
-/// min_inliers); `pvalue` accepts when the score beats a per-pair permutation null at level alpha
-/// (acceptance/calibration.hpp; applied by the harness, which re-runs the solver on the null sets).
-struct AcceptParams {
-  enum class Rule { pvalue, count };
-  Rule rule = Rule::pvalue;
-  double alpha = 0.001;  ///< accept when p < alpha, in (0, 1)
-  int null_draws = 20;   ///< permuted sets the null is fitted on, >= 2
-  /// Where the range of p after null_draws draws still holds alpha (the decision other draws may
-  /// reverse), draw on until it does not or this many draws ran in all; <= null_draws: never.
-  int max_null_draws = 100;
-  /// pvalue rule, sets with a pose prior: accept only a motion inside the prior's chi-square gate
-  /// at this confidence (acceptance/prior_gate.hpp), in [0, 1); 0 = no gate.
-  double prior_gate = 0.999;
-};
-const char* to_string(AcceptParams::Rule rule);
-/// "pvalue" | "count"; throws std::invalid_argument naming the value otherwise.
-AcceptParams::Rule parse_accept_rule(const std::string& name);
-
 struct SolverParams {
   double eps = 0.1;  ///< pair length tolerance of the correspondence graph, Eq. (1) [m]
   double inlier_threshold = 0.1;  ///< residual ||T m - q|| of a consensus inlier [m]
@@ -97,7 +78,6 @@ struct SolverParams {
   TurboRegParams turboreg;
   ClipperParams clipper;
   FastMacParams fastmac;
-  AcceptParams accept;
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;
@@ -148,9 +128,10 @@ ParamField bind(Family SolverParams::*family, T Family::*member, const ParamSpec
   return f;
 }
 
-/// The settings every solver shares (eps, inlier threshold, the accept rule and its level, null
-/// draws, prior gate, min inliers, the pair's time budget, the graph cap, threads), declared once
-/// in params.cpp; then every family, in --help order (ransac, mac, jcbb, gnc, teaser, sc2).
+/// The settings every solver shares (eps, inlier threshold, min inliers (the count rule's K, which
+/// solvers use), the pair's time budget, the graph cap, threads), declared once in params.cpp (the
+/// accept rule's own settings are acceptance/accept_params.hpp's); then every family, in --help
+/// order (ransac, mac, jcbb, gnc, teaser, sc2, ...).
 const ParamFamily& common_param_family();
 const std::vector<ParamFamily>& param_families();
 /// The common rows, then every family's: what the CLI, the report and Python's solve() take.

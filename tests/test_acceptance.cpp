@@ -196,7 +196,6 @@ int hand_draw(const Solver& solver, const Correspondences<Dim>& corr, const Solv
               int k) {
   const std::uint64_t s = derive_seed(params.seed, {kNullStream, std::uint64_t(k)});
   SolverParams p = params;
-  p.accept.rule = AcceptParams::Rule::count;
   p.seed = derive_seed(s, {1});
   return static_cast<int>(solver.solve(permute_targets(corr, s), p).inliers.size());
 }
@@ -215,11 +214,12 @@ bool range_holds(const std::vector<int>& scores, int observed, double alpha) {
 /// are never below the scores of the same permuted sets, and the draws that ran are those scores.
 template <int Dim>
 void expect_the_decision_of_all_draws(const Solver& solver, const Correspondences<Dim>& corr,
-                                      const SolverParams& params, int observed,
-                                      const Calibration& c, const std::string& label) {
-  const int K = params.accept.null_draws;
-  const int most = std::max(K, params.accept.max_null_draws);
-  const double alpha = params.accept.alpha;
+                                      const SolverParams& params, const AcceptParams& accept,
+                                      int observed, const Calibration& c,
+                                      const std::string& label) {
+  const int K = accept.null_draws;
+  const int most = std::max(K, accept.max_null_draws);
+  const double alpha = accept.alpha;
   const int ran = c.screened ? 0 : c.null.draws;
   ASSERT_LE(ran, most) << label;
   std::vector<int> all;
@@ -280,7 +280,8 @@ void expect_early_stops_give_the_decision_of_all_draws(const std::string& name) 
   params.eps = 0.3;
   params.inlier_threshold = 0.15;
   params.ransac.iterations = 1000;  // a ransac bound is offered up to n = iterations
-  params.accept.null_draws = 12;
+  AcceptParams accept;
+  accept.null_draws = 12;
   int early = 0, accepted = 0, screened = 0;
   constexpr int kSets = 24;
   for (std::uint64_t seed = 1; seed <= kSets; ++seed) {
@@ -288,22 +289,22 @@ void expect_early_stops_give_the_decision_of_all_draws(const std::string& name) 
     const LabeledSet<3> set = draw<3>(300, ratio, seed, seed % 4 == 0);
     params.seed = derive_seed(seed, {9});
     const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
-    const Calibration c = calibrate(*solver, set.corr, params, observed);
-    expect_the_decision_of_all_draws(*solver, set.corr, params, observed, c,
+    const Calibration c = calibrate(*solver, set.corr, params, accept, observed);
+    expect_the_decision_of_all_draws(*solver, set.corr, params, accept, observed, c,
                                      name + " seed " + std::to_string(seed));
     // Draws 3 at a time (the solver's solves_concurrently): the same draws, stops and scores.
     SolverParams threaded = params;
     threaded.threads = 3;
-    const Calibration c3 = calibrate(*solver, set.corr, threaded, observed);
+    const Calibration c3 = calibrate(*solver, set.corr, threaded, accept, observed);
     EXPECT_EQ(c3.null.scores, c.null.scores) << name << " seed " << seed;
     EXPECT_EQ(c3.p_value, c.p_value) << name << " seed " << seed;
     EXPECT_EQ(c3.screened, c.screened) << name << " seed " << seed;
     EXPECT_EQ(c3.limited_draws, c.limited_draws) << name << " seed " << seed;
     threaded.max_graph_bytes = BitGraph::bytes_for(set.corr.size());  // room for one graph at once
-    EXPECT_EQ(calibrate(*solver, set.corr, threaded, observed).null.scores, c.null.scores)
+    EXPECT_EQ(calibrate(*solver, set.corr, threaded, accept, observed).null.scores, c.null.scores)
         << name << " seed " << seed;
-    early += c.null.draws < params.accept.null_draws;
-    accepted += c.p_value < params.accept.alpha;
+    early += c.null.draws < accept.null_draws;
+    accepted += c.p_value < accept.alpha;
     screened += c.screened;
   }
   EXPECT_GE(early, kSets / 3) << name;  // many pairs are decided before the last draw
@@ -327,8 +328,9 @@ TEST(Calibration, DrawsOnWhereTheRangeOfPHoldsAlpha) {
   params.eps = 0.3;
   params.inlier_threshold = 0.15;
   params.ransac.iterations = 300;
-  params.accept.null_draws = 8;
-  params.accept.max_null_draws = 40;
+  AcceptParams accept;
+  accept.null_draws = 8;
+  accept.max_null_draws = 40;
   for (const char* name : {"clique", "ransac"}) {
     const auto solver = SolverRegistry::create(name);
     int drew_on = 0, settled = 0, tried = 0;
@@ -336,27 +338,27 @@ TEST(Calibration, DrawsOnWhereTheRangeOfPHoldsAlpha) {
       const LabeledSet<3> set = draw<3>(300, 0.5, seed, true);
       params.seed = derive_seed(seed, {11});
       std::vector<int> first;
-      for (int k = 0; k < params.accept.null_draws; ++k) {
+      for (int k = 0; k < accept.null_draws; ++k) {
         first.push_back(hand_draw(*solver, set.corr, params, k));
       }
       for (int observed = *std::max_element(first.begin(), first.end()) + 1; observed < 200;
            ++observed) {
-        if (!range_holds(first, observed, params.accept.alpha)) continue;
+        if (!range_holds(first, observed, accept.alpha)) continue;
         ++tried;
         const std::string label = std::string(name) + " seed " + std::to_string(seed) +
                                   " observed " + std::to_string(observed);
-        const Calibration c = calibrate(*solver, set.corr, params, observed);
-        expect_the_decision_of_all_draws(*solver, set.corr, params, observed, c, label);
-        EXPECT_GT(c.null.draws, params.accept.null_draws) << label;
-        drew_on += c.null.draws > params.accept.null_draws;
-        settled += c.null.draws < params.accept.max_null_draws;
+        const Calibration c = calibrate(*solver, set.corr, params, accept, observed);
+        expect_the_decision_of_all_draws(*solver, set.corr, params, accept, observed, c, label);
+        EXPECT_GT(c.null.draws, accept.null_draws) << label;
+        drew_on += c.null.draws > accept.null_draws;
+        settled += c.null.draws < accept.max_null_draws;
         SolverParams threaded = params;
         threaded.threads = 3;
-        EXPECT_EQ(calibrate(*solver, set.corr, threaded, observed).null.scores, c.null.scores)
+        EXPECT_EQ(calibrate(*solver, set.corr, threaded, accept, observed).null.scores, c.null.scores)
             << label;
-        SolverParams fixed = params;
-        fixed.accept.max_null_draws = params.accept.null_draws;
-        const Calibration k_only = calibrate(*solver, set.corr, fixed, observed);
+        AcceptParams fixed = accept;
+        fixed.max_null_draws = accept.null_draws;
+        const Calibration k_only = calibrate(*solver, set.corr, params, fixed, observed);
         EXPECT_EQ(k_only.null.scores, first) << label;
         EXPECT_EQ(k_only.p_value, fit_null(first).p_value(observed)) << label;
       }
@@ -383,14 +385,15 @@ TEST(Calibration, TheScreensFinerLevelDecidesWhatCoarseBoundsCannot) {
   const auto solver = SolverRegistry::create("clique");
   SolverParams params;
   params.eps = 0.3;
-  params.accept.null_draws = 12;
+  AcceptParams accept;
+  accept.null_draws = 12;
   int coarse = 0, fine = 0;
   for (std::uint64_t seed = 1; seed <= 8; ++seed) {
     const LabeledSet<3> set = draw<3>(1000, seed % 2 == 1 ? 0.6 : 0.91, seed);
     params.seed = derive_seed(seed, {9});
     const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
-    const Calibration c = calibrate(*solver, set.corr, params, observed);
-    expect_the_decision_of_all_draws(*solver, set.corr, params, observed, c,
+    const Calibration c = calibrate(*solver, set.corr, params, accept, observed);
+    expect_the_decision_of_all_draws(*solver, set.corr, params, accept, observed, c,
                                      "seed " + std::to_string(seed));
     coarse += c.screened && c.screen_part_size == 8;
     fine += c.screened && c.screen_part_size == 64;
@@ -507,13 +510,14 @@ void expect_calibrated_on_negatives(const std::string& solver_name, double eps) 
   params.eps = eps;
   params.inlier_threshold = eps;
   params.ransac.iterations = 300;
+  const AcceptParams accept;
   constexpr int kSets = 400;
   std::map<double, int> below{{0.01, 0}, {0.05, 0}};
   for (int t = 0; t < kSets; ++t) {
     const LabeledSet<Dim> set = draw<Dim>(300, 0.5, derive_seed(77, {std::uint64_t(t)}), true);
     params.seed = derive_seed(78, {std::uint64_t(t)});
     const int observed = static_cast<int>(solver->solve(set.corr, params).inliers.size());
-    const Calibration c = calibrate(*solver, set.corr, params, observed);
+    const Calibration c = calibrate(*solver, set.corr, params, accept, observed);
     for (auto& [level, count] : below) count += c.p_value < level;
   }
   for (const auto& [level, count] : below) {
@@ -540,14 +544,15 @@ TEST(Calibration, PlantedMotionIsDetectedAtTheStatedPower) {
     for (int t = 0; t < kSets; ++t) {
       SolverParams params;
       params.seed = derive_seed(5, {std::uint64_t(t)});
+      const AcceptParams accept;
       const std::uint64_t seed = derive_seed(6, {std::uint64_t(dim), std::uint64_t(t)});
       TrialRecord pos, neg;
       if (dim == 2) {
-        pos = evaluate(*solver, "clique", draw<2>(300, 0.97, seed), params, criteria);
-        neg = evaluate(*solver, "clique", draw<2>(300, 0.97, seed, true), params, criteria);
+        pos = evaluate(*solver, "clique", draw<2>(300, 0.97, seed), params, accept, criteria);
+        neg = evaluate(*solver, "clique", draw<2>(300, 0.97, seed, true), params, accept, criteria);
       } else {
-        pos = evaluate(*solver, "clique", draw<3>(300, 0.97, seed), params, criteria);
-        neg = evaluate(*solver, "clique", draw<3>(300, 0.97, seed, true), params, criteria);
+        pos = evaluate(*solver, "clique", draw<3>(300, 0.97, seed), params, accept, criteria);
+        neg = evaluate(*solver, "clique", draw<3>(300, 0.97, seed, true), params, accept, criteria);
       }
       ASSERT_EQ(pos.true_inliers, 9);
       accepted += pos.accepted;
@@ -567,11 +572,12 @@ TEST(Calibration, CountRuleIsThePapersRule) {
     const auto solver = SolverRegistry::create(name);
     for (int k : {0, 8, 40}) {
       SolverParams params;
-      params.accept.rule = AcceptParams::Rule::count;
+      AcceptParams accept;
+      accept.rule = AcceptParams::Rule::count;
       params.min_inliers = k;
       for (double ratio : {0.5, 0.9, 0.97, 1.0}) {
         const TrialRecord r =
-            evaluate(*solver, name, draw<3>(300, ratio, 11), params, criteria);
+            evaluate(*solver, name, draw<3>(300, ratio, 11), params, accept, criteria);
         ASSERT_NE(r.status, "error") << r.message;
         EXPECT_EQ(r.accepted, r.inliers >= (k > 0 ? k : 5)) << name << " k=" << k;
         EXPECT_EQ(r.status, r.accepted ? "ok" : "rejected");
@@ -597,13 +603,14 @@ TEST(Calibration, DegenerateSetsAreNeverAccepted) {
   for (const std::string name : {"clique", "ransac", "lo-ransac", "mac", "jcbb"}) {
     const auto solver = SolverRegistry::create(name);
     for (auto rule : {AcceptParams::Rule::count, AcceptParams::Rule::pvalue}) {
-      SolverParams params;
-      params.accept.rule = rule;
-      params.accept.null_draws = 5;
+      const SolverParams params;
+      AcceptParams accept;
+      accept.rule = rule;
+      accept.null_draws = 5;
       for (const auto* c : {&line, &same}) {
         LabeledSet<3> set;
         set.corr = *c;
-        const TrialRecord r = evaluate(*solver, name, set, params, criteria);
+        const TrialRecord r = evaluate(*solver, name, set, params, accept, criteria);
         EXPECT_FALSE(r.accepted) << name << " " << to_string(rule) << " n=" << r.n
                                  << " inliers=" << r.inliers << " " << r.message;
         EXPECT_NE(r.status, "ok") << name;
@@ -683,6 +690,36 @@ TEST(Calibration, SyntheticNegativesAndManifestsSayWhatToExpect) {
 namespace verifybench {
 namespace {
 
+// The accept rule's settings are validated apart from the solvers' (acceptance/accept_params.hpp):
+// each bad value names its field; a SolverParams knows nothing of them.
+TEST(AcceptParams, ValidateNamesTheFieldAndTheValue) {
+  EXPECT_NO_THROW(AcceptParams{}.validate());
+  const auto message = [](AcceptParams a) {
+    try {
+      a.validate();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  AcceptParams a;
+  a.alpha = 1.0;
+  EXPECT_NE(message(a).find("alpha = 1 "), std::string::npos) << message(a);
+  a.alpha = std::nan("");
+  EXPECT_NE(message(a).find("alpha = nan"), std::string::npos) << message(a);
+  a = AcceptParams{};
+  a.null_draws = 1;
+  EXPECT_NE(message(a).find("null_draws = 1 "), std::string::npos) << message(a);
+  a = AcceptParams{};
+  a.prior_gate = 1.0;
+  EXPECT_NE(message(a).find("prior_gate = 1 "), std::string::npos) << message(a);
+  a = AcceptParams{};
+  a.max_null_draws = -1;
+  EXPECT_NE(message(a).find("max_null_draws = -1 "), std::string::npos) << message(a);
+  EXPECT_THROW(parse_accept_rule("counts"), std::invalid_argument);
+  EXPECT_EQ(parse_accept_rule(to_string(AcceptParams::Rule::count)), AcceptParams::Rule::count);
+}
+
 // verify(), the one path every caller takes, against the rules' definitions: under the count rule
 // the decision is the inlier count's and no null is fitted; under the calibrated rule it is p <
 // alpha, on a drawn positive and its negative twin; a prior 90 deg off is gated out with d^2 above
@@ -692,16 +729,17 @@ TEST(Verify, EachRuleDecidesByItsDefinition) {
   const auto solver = SolverRegistry::create("clique");
   for (bool negative : {false, true}) {
     const LabeledSet<3> set = draw<3>(300, 0.8, 7, negative);
-    SolverParams p;
-    p.accept.rule = AcceptParams::Rule::count;
-    const Verification<3> count = verify(*solver, set.corr, p);
+    const SolverParams p;
+    AcceptParams a;
+    a.rule = AcceptParams::Rule::count;
+    const Verification<3> count = verify(*solver, set.corr, p, a);
     EXPECT_FALSE(count.calibration.has_value());
     EXPECT_EQ(count.result.accepted,
               static_cast<int>(count.result.inliers.size()) >= p.accept_threshold(3));
-    p.accept.rule = AcceptParams::Rule::pvalue;
-    const Verification<3> calibrated = verify(*solver, set.corr, p);
+    a.rule = AcceptParams::Rule::pvalue;
+    const Verification<3> calibrated = verify(*solver, set.corr, p, a);
     ASSERT_TRUE(calibrated.calibration.has_value());
-    EXPECT_EQ(calibrated.result.accepted, calibrated.calibration->p_value < p.accept.alpha);
+    EXPECT_EQ(calibrated.result.accepted, calibrated.calibration->p_value < a.alpha);
     EXPECT_EQ(calibrated.result.accepted, !negative);
     EXPECT_FALSE(calibrated.prior_d2.has_value());
   }
@@ -713,13 +751,14 @@ TEST(Verify, EachRuleDecidesByItsDefinition) {
       Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   prior.covariance = Eigen::Matrix<double, 6, 6>::Identity() * 0.01;
   set.corr.prior = prior;
-  SolverParams p;
-  const Verification<3> gated = verify(*solver, set.corr, p);
+  const SolverParams p;
+  AcceptParams a;
+  const Verification<3> gated = verify(*solver, set.corr, p, a);
   ASSERT_TRUE(gated.prior_d2.has_value());
-  EXPECT_GT(*gated.prior_d2, chi2_quantile(p.accept.prior_gate, 6));
+  EXPECT_GT(*gated.prior_d2, chi2_quantile(a.prior_gate, 6));
   EXPECT_FALSE(gated.result.accepted);
-  p.accept.rule = AcceptParams::Rule::count;
-  EXPECT_TRUE(verify(*solver, set.corr, p).result.accepted);
+  a.rule = AcceptParams::Rule::count;
+  EXPECT_TRUE(verify(*solver, set.corr, p, a).result.accepted);
 }
 
 }  // namespace
@@ -772,7 +811,7 @@ TEST(Verify, TheNullSolvesShareWhatTheSolveLeftOfThePairsBudget) {
   SolverParams p;
   p.time_limit_s = 0.1;
   SlowSolver slow(60.0);
-  const Verification<3> tight = verify(slow, set.corr, p);
+  const Verification<3> tight = verify(slow, set.corr, p, AcceptParams{});
   ASSERT_TRUE(tight.calibration.has_value());
   EXPECT_TRUE(tight.calibration->budget_exhausted);
   EXPECT_EQ(tight.calibration->p_value, 1.0);
@@ -783,11 +822,11 @@ TEST(Verify, TheNullSolvesShareWhatTheSolveLeftOfThePairsBudget) {
   EXPECT_LT(slow.limits[1], 0.06);  // what the solve left, not another 0.1 s
   p.time_limit_s = 30.0;
   SlowSolver quick(1.0);
-  const Verification<3> ample = verify(quick, set.corr, p);
+  const Verification<3> ample = verify(quick, set.corr, p, AcceptParams{});
   ASSERT_TRUE(ample.calibration.has_value());
   EXPECT_FALSE(ample.calibration->budget_exhausted);
   EXPECT_GE(ample.calibration->null.draws, kMinDrawsToAccept);
-  EXPECT_LT(ample.calibration->null.draws, p.accept.null_draws);  // settled early, by the draws
+  EXPECT_LT(ample.calibration->null.draws, AcceptParams{}.null_draws);  // settled early, by the draws
   EXPECT_TRUE(ample.result.accepted);
 }
 

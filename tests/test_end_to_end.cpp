@@ -19,7 +19,8 @@ TEST(EndToEnd, CliqueRecoversMotionAt95PercentOutliers) {
     p.noise = 0.01;
     p.seed = seed;
     const auto set = make_synthetic<3>(p);
-    const TrialRecord r = evaluate(*clique, "clique", set, SolverParams{}, SuccessCriteria{});
+    const TrialRecord r = evaluate(*clique, "clique", set, SolverParams{}, AcceptParams{},
+                                      SuccessCriteria{});
     EXPECT_EQ(r.status, "ok");
     EXPECT_LT(r.rotation_error_deg, 1.0) << "seed " << seed;
     EXPECT_LT(r.translation_error, 0.1) << "seed " << seed;

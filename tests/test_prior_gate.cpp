@@ -115,12 +115,13 @@ void expect_gate_decisions() {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       SolverParams params;
       params.seed = derive_seed(seed, {4});
+      const AcceptParams accept;  // the default: pvalue, with the gate
       const std::string label = std::string(name) + " " + std::to_string(Dim) + "D seed " +
                                 std::to_string(seed);
       // A prior around the truth (2 deg, 0.5 m): the loop is accepted, d^2 within the gate.
       LabeledSet<Dim> near = loop_set<Dim>(seed);
       add_pose_prior(near, 2.0 * M_PI / 180.0, 0.5, seed);
-      const TrialRecord a = evaluate(*solver, name, near, params, criteria);
+      const TrialRecord a = evaluate(*solver, name, near, params, accept, criteria);
       ASSERT_TRUE(a.success.value_or(false)) << label;
       EXPECT_TRUE(a.accepted) << label;
       EXPECT_LE(a.prior_d2, 22.46) << label;
@@ -128,24 +129,24 @@ void expect_gate_decisions() {
       // d^2 >= (90 / 5)^2 + 20^2 (the fit is within 15 deg and 0.3 m of the truth), rejected.
       LabeledSet<Dim> far = loop_set<Dim>(seed);
       prior_off_the_truth(far, M_PI / 2, 20.0);
-      const TrialRecord b = evaluate(*solver, name, far, params, criteria);
+      const TrialRecord b = evaluate(*solver, name, far, params, accept, criteria);
       ASSERT_LT(b.rotation_error_deg, 15.0) << label;  // the right motion, however decided
       ASSERT_LT(b.translation_error, 0.3) << label;
       EXPECT_GT(b.prior_d2, std::pow(75.0 / 5.0, 2) + std::pow(19.7, 2)) << label;
       EXPECT_FALSE(b.accepted) << label;
       EXPECT_STREQ(decision_of(b), "FN") << label;
-      EXPECT_LT(b.p_value, params.accept.alpha) << label;  // the null alone would accept
+      EXPECT_LT(b.p_value, accept.alpha) << label;  // the null alone would accept
       // Without the gate, and under the paper's count rule, the prior does not decide.
-      SolverParams ungated = params;
-      ungated.accept.prior_gate = 0.0;
-      EXPECT_TRUE(evaluate(*solver, name, far, ungated, criteria).accepted) << label;
-      SolverParams count = params;
-      count.accept.rule = AcceptParams::Rule::count;
-      const TrialRecord c = evaluate(*solver, name, far, count, criteria);
+      AcceptParams ungated = accept;
+      ungated.prior_gate = 0.0;
+      EXPECT_TRUE(evaluate(*solver, name, far, params, ungated, criteria).accepted) << label;
+      AcceptParams count = accept;
+      count.rule = AcceptParams::Rule::count;
+      const TrialRecord c = evaluate(*solver, name, far, params, count, criteria);
       EXPECT_TRUE(c.accepted) << label;
       EXPECT_EQ(c.prior_d2, b.prior_d2) << label;  // recorded under either rule
       // No prior: no distance.
-      EXPECT_TRUE(std::isnan(evaluate(*solver, name, loop_set<Dim>(seed), params, criteria).prior_d2))
+      EXPECT_TRUE(std::isnan(evaluate(*solver, name, loop_set<Dim>(seed), params, accept, criteria).prior_d2))
           << label;
       ++checked;
     }

@@ -123,7 +123,8 @@ std::optional<vb::PosePrior<Dim>> pose_prior(const std::optional<Array>& T,
 template <int Dim>
 py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
                    const std::optional<Array>& scores, const std::optional<Array>& prior_T,
-                   const std::optional<Array>& prior_cov, const vb::SolverParams& params) {
+                   const std::optional<Array>& prior_cov, const vb::SolverParams& params,
+                   const vb::AcceptParams& accept) {
   vb::Correspondences<Dim> corr;
   corr.prior = pose_prior<Dim>(prior_T, prior_cov);
   corr.source = columns<Dim>(src, "src");
@@ -141,7 +142,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   vb::Verification<Dim> v;
   {
     py::gil_scoped_release unlocked;  // other Python threads run while the C++ search does
-    v = vb::verify(*solver, corr, params);
+    v = vb::verify(*solver, corr, params, accept);
   }
   const vb::Result<Dim>& result = v.result;
   const std::optional<vb::Calibration>& calibration = v.calibration;
@@ -157,7 +158,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["T"] = matrix<Dim>(result.T_target_source);
   out["accepted"] = result.accepted;
   out["status"] = vb::to_string(result.status);
-  out["accept_rule"] = vb::to_string(params.accept.rule);
+  out["accept_rule"] = vb::to_string(v.rule);
   out["time_ms"] = ms;
   out["graph_ms"] = result.times.graph_ms;
   out["search_ms"] = result.times.search_ms;
@@ -179,11 +180,33 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   return out;
 }
 
-/// The solver settings given as keywords, read by the same rows as the CLI's options
-/// (solvers/params.hpp), onto a default SolverParams: the defaults are the CLI's.
-vb::SolverParams settings_from(const py::kwargs& given) {
-  const std::vector<vb::ParamField> rows = vb::solver_param_rows();
-  vb::SolverParams p;
+/// What solve() takes as keywords: the solver's settings and the accept rule's, read through one
+/// table of the CLI's rows (solvers/params.hpp, acceptance/accept_params.hpp).
+struct Settings {
+  vb::SolverParams solver;
+  vb::AcceptParams accept;
+};
+using SettingRow = vb::ParamRow<Settings>;
+
+std::vector<SettingRow> setting_rows() {
+  const std::vector<vb::ParamField> solver = vb::solver_param_rows();
+  const auto common = static_cast<std::ptrdiff_t>(vb::common_param_family().fields.size());
+  // The CLI's --help order: the common rows, the accept rule's, then every family's.
+  std::vector<SettingRow> rows = vb::lift_rows(
+      std::vector<vb::ParamField>(solver.begin(), solver.begin() + common), &Settings::solver);
+  for (auto& r : vb::lift_rows(vb::accept_param_rows(), &Settings::accept)) rows.push_back(r);
+  for (auto& r : vb::lift_rows(std::vector<vb::ParamField>(solver.begin() + common, solver.end()),
+                               &Settings::solver)) {
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+/// The settings given as keywords, read by the same rows as the CLI's options onto default
+/// structs: the defaults are the CLI's.
+Settings settings_from(const py::kwargs& given) {
+  const std::vector<SettingRow> rows = setting_rows();
+  Settings p;
   std::vector<bool> seen(rows.size(), false);
   for (const auto& item : given) {
     const std::string key = py::str(item.first);
@@ -198,9 +221,9 @@ vb::SolverParams settings_from(const py::kwargs& given) {
                            "; verifybench.settings() lists them");
     }
     seen[k] = true;
-    const vb::ParamField& r = rows[k];
+    const SettingRow& r = rows[k];
     const py::handle v = item.second;
-    using K = vb::ParamField::Kind;
+    using K = SettingRow::Kind;
     auto out_of_range = [&](double x) {
       std::ostringstream msg;
       msg << key << " = " << x << " is invalid; expected "
@@ -252,20 +275,21 @@ py::dict solve(const std::string& name, const Array& src, const Array& dst,
                const std::optional<Array>& prior_cov, std::uint64_t seed,
                const py::kwargs& settings) {
   const int dim = dimension_of(src, dst);
-  vb::SolverParams params = settings_from(settings);
-  params.seed = seed;
-  params.validate();
-  return dim == 2 ? solve_dim<2>(name, src, dst, scores, prior_T, prior_cov, params)
-                  : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, params);
+  Settings s = settings_from(settings);
+  s.solver.seed = seed;
+  s.solver.validate();
+  s.accept.validate();
+  return dim == 2 ? solve_dim<2>(name, src, dst, scores, prior_T, prior_cov, s.solver, s.accept)
+                  : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, s.solver, s.accept);
 }
 
 /// Every setting solve() takes: its keyword, CLI option, report key, kind, default, range, help.
 py::list settings_list() {
   py::list out;
-  const vb::SolverParams defaults;
-  for (const vb::ParamField& r : vb::solver_param_rows()) {
+  const Settings defaults;
+  for (const SettingRow& r : setting_rows()) {
     py::dict d;
-    using K = vb::ParamField::Kind;
+    using K = SettingRow::Kind;
     d["keyword"] = r.keyword();
     d["option"] = "--" + r.option;
     d["key"] = r.key;
