@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "apps/cli.hpp"
+#include "apps/param_options.hpp"
 #include "core/registry.hpp"
 #include "generators/synthetic.hpp"
 #include "harness/harness.hpp"
@@ -44,19 +45,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
       .add("negatives", "", "",
            "each trial also draws a negative twin (the sides share no motion): the report scores "
            "accept decisions (TP, FP, TN, FN, precision, recall)")
-      .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)")
-      .add("planar-motion", "", "",
-           "3D: true rotations are yaw about z only (ground vehicles; Quatro's regime), not "
-           "uniform on SO(3)")
-      .add("group-ratio", "R", "0.5", "rigid-group: wrong group size / inlier count")
-      .add("grid-spacing", "M", "2", "repetitive: pillar spacing along the corridor [m]")
-      .add("overlap", "F", "0.3", "partial-overlap: fraction of the scene holding the inliers")
-      .add("tail-dof", "NU", "3", "heavy-tailed: Student-t degrees of freedom")
-      .add("anisotropy", "A", "5", "anisotropic: noise along the sensor ray / across it")
-      .add("near-radius", "M", "1", "near-true, bev-orb: outliers this far from the truth [m]")
-      .add("cell", "M", "0.5", "bev-orb: bird's-eye-view cell size [m]")
-      .add("score-separation", "D", "1",
-           "match scores N(D * label, 1), inliers higher (prosac's order); < 0 = none");
+      .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)");
+  cli::add_rows(o, synthetic_shape_rows(), SyntheticParams{});
   cli::add_prior_options(o, "each set");
   cli::add_shard_option(o);
   if (o.parse_or_help(args, "usage: verifybench sweep [options] --out FILE.json\n")) return 0;
@@ -74,15 +64,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
   c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
   c.negatives = o.flag("negatives");
   c.shape.kind = o.text("generator");
-  c.shape.planar_motion = o.flag("planar-motion");
-  c.shape.group_ratio = o.real("group-ratio", 1e-9, 1e9);
-  c.shape.grid_spacing = o.real("grid-spacing", 1e-9, 1e9);
-  c.shape.overlap = o.real("overlap", 1e-9, 1.0);
-  c.shape.tail_dof = o.real("tail-dof", 1e-9, 1e9);
-  c.shape.anisotropy = o.real("anisotropy", 1.0, 1e9);
-  c.shape.near_radius = o.real("near-radius", 1e-9, 1e9);
-  c.shape.cell = o.real("cell", 1e-9, 1e9);
-  c.shape.score_separation = o.real("score-separation", -1e9, 1e9);
+  cli::read_rows(o, synthetic_shape_rows(), c.shape);
   check_generator(c.shape.kind, c.dims);
   std::tie(c.prior_sigma_rot, c.prior_sigma_trans) = cli::prior_sigmas(o);
   c.params = cli::solver_params(o);
@@ -94,16 +76,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
 
   nlohmann::json parameters = cli::params_json(c.params, c.accept, c.criteria);
   parameters["sweep"] = {{"generator", c.shape.kind},
-                         {"generator_shape",
-                          {{"planar_motion", c.shape.planar_motion},
-                           {"group_ratio", c.shape.group_ratio},
-                           {"grid_spacing", c.shape.grid_spacing},
-                           {"overlap", c.shape.overlap},
-                           {"tail_dof", c.shape.tail_dof},
-                           {"anisotropy", c.shape.anisotropy},
-                           {"near_radius", c.shape.near_radius},
-                           {"cell", c.shape.cell},
-                           {"score_separation", c.shape.score_separation}}},
+                         {"generator_shape", cli::rows_json(synthetic_shape_rows(), c.shape)},
                          {"prior_sigma_rot_deg", c.prior_sigma_rot * 180.0 / M_PI},
                          {"prior_sigma_trans", c.prior_sigma_trans},
                          {"dims", c.dims},

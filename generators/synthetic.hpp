@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/correspondences.hpp"
+#include "core/param_rows.hpp"
 
 namespace verifybench {
 
@@ -40,6 +41,11 @@ struct SyntheticParams {
   bool negative = false;
   void validate() const;  ///< throws std::invalid_argument naming the field and value
 };
+
+/// The per-kind shape settings as rows (core/param_rows.hpp), declared once in synthetic_rows.cpp:
+/// `sweep`'s options (--planar-motion, --group-ratio, ... --score-separation), its report's
+/// generator_shape block and Python's synthetic() keywords.
+const std::vector<ParamRow<SyntheticParams>>& synthetic_shape_rows();
 
 struct GeneratorInfo {
   std::string name;

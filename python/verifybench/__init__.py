@@ -12,11 +12,11 @@ build/python on PYTHONPATH, or install the package (`cmake --install build`, or
 """
 import json
 
-from ._core import (InputError, __version__, generators, git_commit, read_dump,  # noqa: F401
-                    settings, solve, solvers, synthetic)
+from ._core import (InputError, __version__, generator_settings, generators,  # noqa: F401
+                    git_commit, read_dump, settings, solve, solvers, synthetic)
 
-__all__ = ["InputError", "__version__", "generators", "git_commit", "load_report", "read_dump",
-           "settings", "solve", "solvers", "synthetic"]
+__all__ = ["InputError", "__version__", "generator_settings", "generators", "git_commit",
+           "load_report", "read_dump", "settings", "solve", "solvers", "synthetic"]
 
 
 LOOP_TABLES = ("closures", "summary", "maps", "candidates", "true_closures")

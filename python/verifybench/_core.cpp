@@ -202,11 +202,13 @@ std::vector<SettingRow> setting_rows() {
   return rows;
 }
 
-/// The settings given as keywords, read by the same rows as the CLI's options onto default
-/// structs: the defaults are the CLI's.
-Settings settings_from(const py::kwargs& given) {
-  const std::vector<SettingRow> rows = setting_rows();
-  Settings p;
+/// Keywords read onto `p` by the same rows as the CLI's options (so the defaults, names and ranges
+/// are the CLI's): an unknown keyword is a TypeError with the nearest name, a bad value a
+/// ValueError naming it.
+template <class P>
+void read_keywords(const std::vector<vb::ParamRow<P>>& rows, const py::kwargs& given, P& p,
+                   const std::string& function, const std::string& listing) {
+  using Row = vb::ParamRow<P>;
   std::vector<bool> seen(rows.size(), false);
   for (const auto& item : given) {
     const std::string key = py::str(item.first);
@@ -216,14 +218,14 @@ Settings settings_from(const py::kwargs& given) {
       std::vector<std::string> keywords;
       for (const auto& r : rows) keywords.push_back(r.keyword());
       const std::string best = vb::nearest_name(key, keywords);
-      throw py::type_error("solve(): unknown setting '" + key + "'" +
-                           (best.empty() ? "" : " (did you mean '" + best + "'?)") +
-                           "; verifybench.settings() lists them");
+      throw py::type_error(function + "(): unknown setting '" + key + "'" +
+                           (best.empty() ? "" : " (did you mean '" + best + "'?)") + "; " +
+                           listing + " lists them");
     }
     seen[k] = true;
-    const SettingRow& r = rows[k];
+    const Row& r = rows[k];
     const py::handle v = item.second;
-    using K = SettingRow::Kind;
+    using K = typename Row::Kind;
     auto out_of_range = [&](double x) {
       std::ostringstream msg;
       msg << key << " = " << x << " is invalid; expected "
@@ -267,6 +269,11 @@ Settings settings_from(const py::kwargs& given) {
   for (std::size_t k = 0; k < rows.size(); ++k) {
     if (!seen[k] && rows[k].when_absent) rows[k].when_absent(p);
   }
+}
+
+Settings settings_from(const py::kwargs& given) {
+  Settings p;
+  read_keywords(setting_rows(), given, p, "solve", "verifybench.settings()");
   return p;
 }
 
@@ -283,13 +290,13 @@ py::dict solve(const std::string& name, const Array& src, const Array& dst,
                   : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, s.solver, s.accept);
 }
 
-/// Every setting solve() takes: its keyword, CLI option, report key, kind, default, range, help.
-py::list settings_list() {
+/// Rows as Python dicts: keyword, CLI option, report key, kind, default (of `defaults`), range, help.
+template <class P>
+py::list rows_list(const std::vector<vb::ParamRow<P>>& rows, const P& defaults) {
   py::list out;
-  const Settings defaults;
-  for (const SettingRow& r : setting_rows()) {
+  for (const vb::ParamRow<P>& r : rows) {
     py::dict d;
-    using K = SettingRow::Kind;
+    using K = typename vb::ParamRow<P>::Kind;
     d["keyword"] = r.keyword();
     d["option"] = "--" + r.option;
     d["key"] = r.key;
@@ -314,6 +321,14 @@ py::list settings_list() {
   return out;
 }
 
+/// Every setting solve() takes.
+py::list settings_list() { return rows_list(setting_rows(), Settings{}); }
+
+/// Every shape setting synthetic() takes (sweep's generator options).
+py::list generator_settings_list() {
+  return rows_list(vb::synthetic_shape_rows(), vb::SyntheticParams{});
+}
+
 template <int Dim>
 py::dict set_dict(const vb::LabeledSet<Dim>& s) {
   py::dict out;
@@ -334,18 +349,15 @@ py::dict set_dict(const vb::LabeledSet<Dim>& s) {
   return out;
 }
 
-/// The generator's shape settings (generators/synthetic.hpp), as `sweep`'s options name them.
-struct Shape {
-  double group_ratio, grid_spacing, overlap, tail_dof, anisotropy, near_radius, cell,
-      score_separation;
-  bool planar_motion;
-  double prior_rot_deg, prior_trans;
+/// synthetic()'s pose prior: per-axis sigmas drawn around the truth, as sweep's --prior-* options.
+struct PriorSigmas {
+  double rot_deg = 0.0, trans = 0.0;
 };
 
 template <int Dim>
-py::dict synthetic_dict(vb::LabeledSet<Dim> set, const Shape& shape, std::uint64_t seed) {
-  if (shape.prior_rot_deg > 0.0) {
-    vb::add_pose_prior(set, shape.prior_rot_deg * M_PI / 180.0, shape.prior_trans, seed);
+py::dict synthetic_dict(vb::LabeledSet<Dim> set, const PriorSigmas& prior, std::uint64_t seed) {
+  if (prior.rot_deg > 0.0) {
+    vb::add_pose_prior(set, prior.rot_deg * M_PI / 180.0, prior.trans, seed);
   }
   py::dict out = set_dict<Dim>(set);
   out["prior_T"] = set.corr.prior ? py::object(matrix<Dim>(set.corr.prior->T_target_source))
@@ -363,21 +375,15 @@ py::dict synthetic_dict(vb::LabeledSet<Dim> set, const Shape& shape, std::uint64
 }
 
 py::dict synthetic(int n, double outliers, double noise, int dim, std::uint64_t seed,
-                   const std::string& kind, double extent, bool negative, const Shape& shape) {
-  if ((shape.prior_rot_deg > 0.0) != (shape.prior_trans > 0.0) || !(shape.prior_rot_deg >= 0.0) ||
-      !(shape.prior_trans >= 0.0)) {
+                   const std::string& kind, double extent, bool negative, const PriorSigmas& prior,
+                   const py::kwargs& shape) {
+  if ((prior.rot_deg > 0.0) != (prior.trans > 0.0) || !(prior.rot_deg >= 0.0) ||
+      !(prior.trans >= 0.0)) {
     throw std::invalid_argument("prior_rot_deg and prior_trans: both > 0 or both 0");
   }
   vb::SyntheticParams p;
-  p.group_ratio = shape.group_ratio;
-  p.grid_spacing = shape.grid_spacing;
-  p.overlap = shape.overlap;
-  p.tail_dof = shape.tail_dof;
-  p.anisotropy = shape.anisotropy;
-  p.near_radius = shape.near_radius;
-  p.cell = shape.cell;
-  p.score_separation = shape.score_separation;
-  p.planar_motion = shape.planar_motion;
+  read_keywords(vb::synthetic_shape_rows(), shape, p, "synthetic",
+                "verifybench.generator_settings()");
   p.n = n;
   p.outlier_ratio = outliers;
   p.noise = noise;
@@ -387,8 +393,8 @@ py::dict synthetic(int n, double outliers, double noise, int dim, std::uint64_t 
   p.max_translation = extent / 2;
   p.negative = negative;
   p.validate();
-  if (dim == 2) return synthetic_dict<2>(vb::make_synthetic<2>(p), shape, seed);
-  if (dim == 3) return synthetic_dict<3>(vb::make_synthetic<3>(p), shape, seed);
+  if (dim == 2) return synthetic_dict<2>(vb::make_synthetic<2>(p), prior, seed);
+  if (dim == 3) return synthetic_dict<3>(vb::make_synthetic<3>(p), prior, seed);
   throw std::invalid_argument("dim = " + std::to_string(dim) + ": 2 or 3 expected");
 }
 
@@ -431,28 +437,27 @@ PYBIND11_MODULE(_core, m) {
         "provisional. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1) guess and the\n"
         "3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under 'pvalue' a\n"
         "motion outside its chi-square gate at prior_gate is not accepted.");
+  m.def("generator_settings", &generator_settings_list,
+        "Every shape setting synthetic() takes, as `sweep` declares it: keyword, option, key, kind, "
+        "default, min, max, help.");
   m.def("settings", &settings_list,
         "Every setting solve() takes, as the CLI declares it: keyword, option, key, kind, default, "
         "min, max, help.");
   m.def(
       "synthetic",
       [](int n, double outliers, double noise, int dim, std::uint64_t seed, const std::string& kind,
-         double extent, bool negative, double group_ratio, double grid_spacing, double overlap,
-         double tail_dof, double anisotropy, double near_radius, double cell,
-         double score_separation, bool planar_motion, double prior_rot_deg, double prior_trans) {
+         double extent, bool negative, double prior_rot_deg, double prior_trans,
+         const py::kwargs& shape) {
         return synthetic(n, outliers, noise, dim, seed, kind, extent, negative,
-                         Shape{group_ratio, grid_spacing, overlap, tail_dof, anisotropy,
-                               near_radius, cell, score_separation, planar_motion, prior_rot_deg,
-                               prior_trans});
+                         PriorSigmas{prior_rot_deg, prior_trans}, shape);
       },
       py::kw_only(), py::arg("n") = 500, py::arg("outliers") = 0.5, py::arg("noise") = 0.01,
       py::arg("dim") = 3, py::arg("seed") = 1, py::arg("kind") = "uniform",
-      py::arg("extent") = 10.0, py::arg("negative") = false, py::arg("group_ratio") = 0.5,
-      py::arg("grid_spacing") = 2.0, py::arg("overlap") = 0.3, py::arg("tail_dof") = 3.0,
-      py::arg("anisotropy") = 5.0, py::arg("near_radius") = 1.0, py::arg("cell") = 0.5,
-      py::arg("score_separation") = 1.0, py::arg("planar_motion") = false,
-      py::arg("prior_rot_deg") = 0.0, py::arg("prior_trans") = 0.0,
-      "A seeded synthetic set, as `sweep` draws it (the same kind and shape settings): dict of src, "
+      py::arg("extent") = 10.0, py::arg("negative") = false, py::arg("prior_rot_deg") = 0.0,
+      py::arg("prior_trans") = 0.0,
+      "A seeded synthetic set, as `sweep` draws it (the same kind and shape settings: every shape "
+      "option of sweep is a keyword, '-' as '_', with sweep's default; generator_settings() lists "
+      "them): dict of src, "
       "dst, labels (1 = inlier), T (the true motion), scores (None for score_separation < 0), "
       "positive, and prior_T / prior_cov (a pose prior drawn around the truth with per-axis sigmas "
       "prior_rot_deg [deg] and prior_trans [m], as sweep's --prior-rot-deg / --prior-trans; None "

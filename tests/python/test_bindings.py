@@ -278,6 +278,41 @@ def test_every_setting_defaults_to_the_clis_and_reaches_solve():
     assert not c["accepted"] and c["accept_rule"] == "count"
 
 
+def test_every_generator_setting_defaults_to_the_clis_and_is_in_the_stub():
+    """synthetic()'s shape keywords are sweep's shape options (the same rows): same defaults as
+    `sweep --help`, listed in the stub with those defaults, and each one reaches the generator (a
+    changed value changes the drawn set of its kind)."""
+    import ast
+    rows = vb.generator_settings()
+    defaults = cli_defaults()
+    assert {r["keyword"] for r in rows} == {"planar_motion", "group_ratio", "grid_spacing", "overlap",
+                                            "tail_dof", "anisotropy", "near_radius", "cell",
+                                            "score_separation"}
+    stub = ast.parse(open(os.path.join(os.path.dirname(vb.__file__), "_core.pyi")).read())
+    synth = next(f for f in stub.body if isinstance(f, ast.FunctionDef) and f.name == "synthetic")
+    stub_defaults = {a.arg: ast.literal_eval(d) for a, d in zip(synth.args.kwonlyargs, synth.args.kw_defaults)}
+    for r in rows:
+        shown = defaults[r["option"]]
+        if r["kind"] == "flag":
+            assert r["default"] is False and shown == "", r
+        else:
+            assert float(shown) == pytest.approx(r["default"]), r
+        assert stub_defaults[r["keyword"]] == r["default"], r
+    kinds = {"group_ratio": ("rigid-group", 0.8), "grid_spacing": ("repetitive", 1.0),
+             "overlap": ("partial-overlap", 0.6), "tail_dof": ("heavy-tailed", 1.5),
+             "anisotropy": ("anisotropic", 9.0), "near_radius": ("near-true", 3.0),
+             "cell": ("bev-orb", 0.25), "score_separation": ("uniform", 3.0),
+             "planar_motion": ("uniform", True)}
+    for keyword, (kind, value) in kinds.items():
+        dim = 2 if kind == "bev-orb" else 3
+        a = vb.synthetic(n=200, outliers=0.6, kind=kind, dim=dim, seed=2)
+        b = vb.synthetic(n=200, outliers=0.6, kind=kind, dim=dim, seed=2, **{keyword: value})
+        changed = any(not np.array_equal(a[k], b[k]) for k in ("src", "dst", "T", "scores"))
+        assert changed, keyword
+    with pytest.raises(TypeError, match="did you mean 'group_ratio'"):
+        vb.synthetic(group_ration=0.5)
+
+
 def test_unknown_or_bad_settings_are_named_without_the_arrays():
     s = vb.synthetic(n=2000, outliers=0.5, seed=1)
     with pytest.raises(TypeError) as e:
