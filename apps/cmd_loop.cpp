@@ -57,6 +57,10 @@ void add_loop_options(Options& o) {
       .add("reference", "FILE", "",
            "ground truth when the sequence's own poses are not: a TUM or KITTI file (matched to "
            "the scans by stamp, else by index), or for carmen a corrected log")
+      .add("relations", "FILE", "",
+           "reference relations (Kuemmerle et al. 2009: `t1 t2 x y z roll pitch yaw` a line, e.g. "
+           "radish2d's aces.relations): the report adds their relation error without and with "
+           "loops; needs a sequence that logs its odometry (carmen)")
       .add("first-frame", "I", "0", "first frame of the excerpt")
       .add("last-frame", "I", "-1", "last frame of the excerpt (-1 = the end)")
       .add("scan-spacing", "M", "2", "use a scan every M metres of travel");
@@ -198,9 +202,21 @@ LoopConfig loop_config(const Options& o) {
       }
       odometry_poses = info.odometry;
     }
+    if (o.given("relations")) {
+      if (info.odometry_stream.empty()) {
+        throw UsageError("--relations: " + c.sequence_dir + " (" + info.format +
+                         ") logs no odometry to carry the estimate between frames");
+      }
+      c.relations_file = o.text("relations");
+      c.relations = read_relations(c.relations_file);
+      c.odometry_stream_stamps = info.odometry_stream_stamps;
+      c.odometry_stream = info.odometry_stream;
+    }
   } else {
-    if (o.given("reference") || o.given("sequence-format") || o.given("poses-file")) {
-      throw UsageError("--reference, --sequence-format and --poses-file go with --sequence");
+    if (o.given("reference") || o.given("sequence-format") || o.given("poses-file") ||
+        o.given("relations")) {
+      throw UsageError(
+          "--reference, --sequence-format, --poses-file and --relations go with --sequence");
     }
     const std::string trajectory = o.text("trajectory");
     poses = trajectory == "block" && !std::filesystem::exists(trajectory)
@@ -302,6 +318,7 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"sequence_format", c.source ? c.source->info().format : ""},
                {"sequence_note", c.source ? c.source->info().note : ""},
                {"reference", c.reference},
+               {"relations", c.relations_file},
                {"odometry_file", o.text("odometry-file")},
                {"trajectory_frame", o.text("trajectory-frame")},
                {"first_frame", c.first_frame},

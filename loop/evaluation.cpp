@@ -132,18 +132,30 @@ void optimise_pose_graphs(const LoopConfig& config, const std::vector<LocalMap>&
   }
 }
 
-void trajectory_errors(LoopRun& run) {
+void trajectory_errors(const LoopConfig& config, LoopRun& run) {
   run.ape_without = absolute_pose_error(run.odometry, run.truth);
   for (SolverSummary& sum : run.summary) {
     sum.ape_with = absolute_pose_error(sum.poses_with, run.truth);
     sum.ape_with_robust = absolute_pose_error(sum.poses_with_robust, run.truth);
+  }
+  if (config.relations.empty()) return;
+  std::vector<double> stamps;  // the frames' (config.stamps is per frame of the excerpt)
+  for (int f : run.frames) stamps.push_back(config.stamps.at(static_cast<std::size_t>(f)));
+  auto error_of = [&](const std::vector<Rigid<3>>& poses) {
+    return relation_error(config.relations, stamps, poses, config.odometry_stream_stamps,
+                          config.odometry_stream);
+  };
+  run.relations_without = error_of(run.odometry);
+  for (SolverSummary& sum : run.summary) {
+    sum.relations_with = error_of(sum.poses_with);
+    sum.relations_with_robust = error_of(sum.poses_with_robust);
   }
 }
 
 void summarise_solvers(const LoopConfig& config, const std::vector<LocalMap>& maps, LoopRun& run) {
   score_solvers(config, run);
   optimise_pose_graphs(config, maps, run);
-  trajectory_errors(run);
+  trajectory_errors(config, run);
 }
 
 }  // namespace verifybench

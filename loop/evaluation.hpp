@@ -7,7 +7,8 @@
 //              carry the drift model's sigmas (odometry_sigma, loop/odometry.hpp): per axis
 //              trans_rel * L plus the yaw walk's swing, yaw * sqrt(L) * L / sqrt(3), for maps L
 //              apart;
-//   metrics    the APE of every scan, without loops and with each back end's (trajectory_errors).
+//   metrics    the APE of every scan, without loops and with each back end's, and Kuemmerle's
+//              relation error where the sequence has reference relations (trajectory_errors).
 #include <vector>
 
 #include "loop/local_maps.hpp"
@@ -26,8 +27,9 @@ void score_solvers(const LoopConfig& config, LoopRun& run);
 void optimise_pose_graphs(const LoopConfig& config, const std::vector<LocalMap>& maps,
                           LoopRun& run);
 
-/// run.ape_without (odometry), and each summary's ape_with and ape_with_robust, against run.truth.
-void trajectory_errors(LoopRun& run);
+/// run.ape_without (odometry), and each summary's ape_with and ape_with_robust, against run.truth;
+/// with config.relations, the relation errors of the same trajectories (loop/relations.hpp).
+void trajectory_errors(const LoopConfig& config, LoopRun& run);
 
 /// The three above in turn: fills run.summary and run.ape_without from run.frames, run.truth,
 /// run.odometry, run.rows and run.true_closures.

@@ -25,6 +25,18 @@ json ape_json(const ApeStats& a) {
       {"rmse", a.rmse}, {"mean", a.mean}, {"median", a.median}, {"max", a.max}, {"poses", a.poses}};
 }
 
+/// A relation error (loop/relations.hpp) as JSON; null where the run had no relations.
+json relation_json(const LoopConfig& config, const RelationError& e) {
+  if (config.relations.empty()) return nullptr;
+  auto number = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  return {{"relations", e.relations},
+          {"used", e.used},
+          {"translation_m", number(e.translation_m)},
+          {"translation_sq_m2", number(e.translation_sq)},
+          {"rotation_deg", number(e.rotation_deg)},
+          {"rotation_sq_deg2", number(e.rotation_sq)}};
+}
+
 json score_json(const ClosureScore& s) {
   return {{"tp", s.tp},
           {"fp", s.fp},
@@ -146,6 +158,9 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
                 {"ape_without", ape_json(run.ape_without)},
                 {"ape_with", ape_json(s.ape_with)},
                 {"ape_with_robust", ape_json(s.ape_with_robust)},
+                {"relation_error_without", relation_json(config, run.relations_without)},
+                {"relation_error_with", relation_json(config, s.relations_with)},
+                {"relation_error_with_robust", relation_json(config, s.relations_with_robust)},
                 {"pose_graph",
                  {{"iterations", s.graph_iterations},
                   {"converged", s.graph_converged},
@@ -212,6 +227,20 @@ std::string loop_markdown(const LoopConfig& config, const LoopRun& run) {
     md << "| " << s.solver << " | " << fixed(run.ape_without.rmse, 2) << " | "
        << fixed(s.ape_with.rmse, 2) << " | " << fixed(s.ape_with_robust.rmse, 2) << " | "
        << s.loop_edges << " |\n";
+  }
+  if (!config.relations.empty()) {
+    md << "\nRelation error (Kuemmerle et al. 2009: mean translation [m] / rotation [deg] of the "
+       << run.relations_without.used << " of " << run.relations_without.relations
+       << " reference relations in " << config.relations_file << ")\n\n";
+    md << "| solver | without loops | with loops | with loops, robust (Cauchy) |\n";
+    md << "|---|---|---|---|\n";
+    auto cell = [](const RelationError& e) {
+      return fixed(e.translation_m, 3) + " / " + fixed(e.rotation_deg, 2);
+    };
+    for (const SolverSummary& s : run.summary) {
+      md << "| " << s.solver << " | " << cell(run.relations_without) << " | "
+         << cell(s.relations_with) << " | " << cell(s.relations_with_robust) << " |\n";
+    }
   }
   md << "\nWall time: " << fixed(run.seconds.count("total_s") ? run.seconds.at("total_s") : 0, 1)
      << " s\n";

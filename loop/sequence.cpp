@@ -394,7 +394,7 @@ void back_end_and_metrics(const LoopConfig& config, const MapsAndFeatures& mf, L
   StopWatch clock;
   score_solvers(config, run);
   optimise_pose_graphs(config, mf.maps, run);
-  trajectory_errors(run);
+  trajectory_errors(config, run);
   run.seconds["pose_graph_s"] = clock.ms() / 1000.0;
 }
 

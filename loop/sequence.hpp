@@ -40,6 +40,7 @@
 #include "generators/odometry.hpp"
 #include "generators/world.hpp"
 #include "loop/dense_check.hpp"
+#include "loop/relations.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/pose_graph.hpp"
 #include "loop/retrieval.hpp"
@@ -65,6 +66,12 @@ struct LoopConfig {
   std::string reference = "truth";  ///< where `truth` came from, for the report
   /// odometry "poses" (a file) and "log" (the recording's own): T_world_sensor per frame.
   Trajectory odometry_poses;
+  /// Reference relations (loop/relations.hpp; --relations) and the recording's odometry stream
+  /// that carries the estimates between frames: the run then reports Kuemmerle's relation error.
+  std::vector<Relation> relations;
+  std::string relations_file;
+  std::vector<double> odometry_stream_stamps;
+  Trajectory odometry_stream;
   WorldParams world;
   LidarParams lidar;
   /// "drift": the drift model on the true poses; "gicp": scan-to-scan GICP on the scans used;
@@ -142,6 +149,7 @@ struct SolverSummary {
   /// Largest recall over the count curve at precision 1 (0 when no K reaches it).
   double max_recall_full_precision = 0;
   ApeStats ape_with, ape_with_robust;
+  RelationError relations_with, relations_with_robust;  ///< with config.relations only
   std::vector<Rigid<3>> poses_with, poses_with_robust;  ///< every scan, optimised
   int loop_edges = 0;
   /// Levenberg-Marquardt iterations of the two pose graphs and whether Ceres reported convergence.
@@ -158,6 +166,7 @@ struct LoopRun {
   std::vector<ClosureRow> rows;
   std::vector<SolverSummary> summary;
   ApeStats ape_without;
+  RelationError relations_without;  ///< the odometry's, with config.relations only
   std::map<std::string, double> seconds;  ///< per stage
   std::map<std::string, int> world;       ///< the simulated world's counts
 };

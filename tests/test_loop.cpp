@@ -826,6 +826,39 @@ TEST(LoopCli, BalmRealworldSmallSceneSettingsCloseItsLoops) {
   fs::remove_all(dir);
 }
 
+// radish2d's aces log with its own wheel odometry, the README's indoor 2D settings (odometry noise
+// of wheel odometry: 10% of travel, 2 deg / sqrt(m) of yaw, as the pose prior's and the pose
+// graph's sigmas): clique accepts only correct closures, at least one, and its loops lower both
+// the APE against the corrected log and Kuemmerle's relation error of the reference relations.
+TEST(LoopCli, RadishAcesWithItsOdometryClosesOnlyCorrectLoopsAndLowersBothErrors) {
+  const fs::path data = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d";
+  if (!fs::exists(data / "aces.clf")) GTEST_SKIP() << "no " << data << " (../shared/data absent)";
+  const fs::path dir = fs::temp_directory_path() / "vb_loop_aces";
+  fs::remove_all(dir);
+  const auto r = run_cli(
+      "loop --no-plots --quiet --sequence " + (data / "aces.clf").string() +
+      " --odometry log --reference " + (data / "corrected" / "aces-corrected.log").string() +
+      " --relations " + (data / "aces.relations").string() +
+      " --pipeline 2d --cell 0.1 --range 20 --map-length 10 --map-voxel 0.05 --scan-spacing 0.2"
+      " --eps 0.2 --pose-tolerance 1 --odometry-prior --drift-trans 0.1 --drift-yaw-deg 2"
+      " --solvers clique --out " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "loop.json");
+  const auto j = nlohmann::json::parse(in);
+  const auto& clique = j["summary"][0];
+  EXPECT_GE(clique["tp"].get<int>(), 1) << clique.dump();
+  EXPECT_EQ(clique["fp"].get<int>(), 0) << clique.dump();
+  EXPECT_LT(clique["ape_with_m"].get<double>(), clique["ape_without_m"].get<double>());
+  const auto& without = clique["relation_error_without"];
+  const auto& with = clique["relation_error_with"];
+  EXPECT_EQ(without["relations"].get<int>(), 1279);
+  EXPECT_GT(without["used"].get<int>(), 1200);
+  EXPECT_LT(with["translation_m"].get<double>(), without["translation_m"].get<double>());
+  EXPECT_LT(with["rotation_deg"].get<double>(), without["rotation_deg"].get<double>());
+  EXPECT_EQ(j["parameters"]["loop"]["relations"], (data / "aces.relations").string());
+  fs::remove_all(dir);
+}
+
 // `loop` offers every front-end option of `extract`, with the same value ranges (one declaration:
 // frontend/params.cpp); the names are listed here as the oracle, so a dropped row fails.
 TEST(LoopCli, HelpListsEveryFrontEndOptionOfExtractWithItsRange) {

@@ -18,6 +18,7 @@
 
 #include "core/errors.hpp"
 #include "datasets/trajectory.hpp"
+#include "loop/relations.hpp"
 #include "loop/sources/source.hpp"
 #include "test_util.hpp"
 
@@ -741,4 +742,120 @@ TEST(SequenceRegistry, NamesTheFormatsWhenItCannotChoose) {
                                       {"several", "folder, kitti"});
   EXPECT_EQ(vb::open_sequence(tmp.str(), "kitti")->size(), 1);
   EXPECT_THROW(vb::register_source({"kitti", "", {}, {}}), std::logic_error);
+}
+
+// ------------------------------------------------------------------------------------------------
+// relations (loop/relations.hpp): Kuemmerle et al.'s reference relations and their error
+
+namespace {
+
+// A planar path along which the pose at sample k is known in closed form: the reference.
+vb::Rigid<3> path_pose(int k) {
+  return vb::test::planar_pose(0.3 * k + std::sin(0.05 * k), 0.2 * k, 0.02 * k);
+}
+
+}  // namespace
+
+TEST(Relations, ReadsTheFileAndNamesEachBadField) {
+  TempDir tmp;
+  const std::string path = (tmp / "r.relations").string();
+  write_text(path, "# t1 t2 x y z roll pitch yaw\n\n90.5 91.0 0.4 -0.1 0 0 0 0.5\n"
+                   "1 2 0 0 0 0.1 0 0\n");
+  const auto r = vb::read_relations(path);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].t1, 90.5);
+  EXPECT_EQ(r[0].t2, 91.0);
+  expect_pose_near(r[0].T, vb::test::planar_pose(0.4, -0.1, 0.5), 1e-12);
+  EXPECT_NEAR(Eigen::AngleAxisd(Eigen::Matrix3d(r[1].T.linear())).angle(), 0.1, 1e-12);
+  EXPECT_NEAR(r[1].T.linear()(2, 1), std::sin(0.1), 1e-12);  // roll: about x
+  write_text(path, "1 2 0 0 0 0 0\n");
+  expect_error([&] { vb::read_relations(path); }, {path + ":1", "field yaw missing"});
+  write_text(path, "1 2 0 abc 0 0 0 0\n");
+  expect_error([&] { vb::read_relations(path); }, {path + ":1", "field y = 'abc' is not a number"});
+  write_text(path, "1 2 0 0 0 0 0 0\n1 2 inf 0 0 0 0 0\n");
+  expect_error([&] { vb::read_relations(path); }, {path + ":2", "field x = 'inf' is not finite"});
+  write_text(path, "3 2 0 0 0 0 0 0\n");
+  expect_error([&] { vb::read_relations(path); }, {path + ":1", "is before t1"});
+  write_text(path, "1 2 0 0 0 0 0 0 9\n");
+  expect_error([&] { vb::read_relations(path); }, {path + ":1", "more than 8 fields"});
+  write_text(path, "# nothing\n");
+  expect_error([&] { vb::read_relations(path); }, {path, "no relation"});
+  expect_error([&] { vb::read_relations((tmp / "none").string()); }, {"cannot open"});
+}
+
+TEST(Relations, ErrorIsZeroForTheReferenceAndTheShiftForRelationsAcrossAShiftedPart) {
+  // Odometry samples every 0.1 s are the reference path itself; frames are every 10th sample.
+  std::vector<double> stamps;
+  std::vector<vb::Rigid<3>> odometry;
+  for (int k = 0; k <= 200; ++k) {
+    stamps.push_back(10.0 + 0.1 * k);
+    odometry.push_back(path_pose(k));
+  }
+  std::vector<double> frame_stamps;
+  std::vector<vb::Rigid<3>> exact, shifted;
+  const Eigen::Vector3d shift(0.6, -0.8, 0.0);  // |shift| = 1 m
+  for (int k = 0; k <= 200; k += 10) {
+    frame_stamps.push_back(stamps[static_cast<std::size_t>(k)]);
+    exact.push_back(path_pose(k));
+    vb::Rigid<3> T = path_pose(k);
+    if (k >= 100) T.pretranslate(shift);  // frames from 20 s on moved by 1 m in the world
+    shifted.push_back(T);
+  }
+  // Relations between samples (the reference's own motions), some crossing 20 s, one outside.
+  std::vector<vb::Relation> relations;
+  int crossing = 0;
+  for (int a = 3; a + 37 <= 200; a += 17) {
+    const int b = a + 37;
+    vb::Relation r;
+    r.t1 = stamps[static_cast<std::size_t>(a)];
+    r.t2 = stamps[static_cast<std::size_t>(b)];
+    r.T = path_pose(a).inverse() * path_pose(b);
+    relations.push_back(r);
+    // Which side a stamp is on: that of its nearest frame (frames at multiples of 10 samples).
+    const auto side = [](int k) { return (k + 5) / 10 * 10 >= 100; };
+    crossing += side(a) != side(b);
+  }
+  vb::Relation outside;
+  outside.t1 = 5.0;  // before the odometry
+  outside.t2 = 11.0;
+  outside.T = vb::Rigid<3>::Identity();
+  relations.push_back(outside);
+  ASSERT_GT(crossing, 0);
+
+  const vb::RelationError e0 = vb::relation_error(relations, frame_stamps, exact, stamps, odometry);
+  EXPECT_EQ(e0.relations, static_cast<int>(relations.size()));
+  EXPECT_EQ(e0.used, static_cast<int>(relations.size()) - 1);
+  EXPECT_NEAR(e0.translation_m, 0.0, 1e-9);
+  EXPECT_NEAR(e0.rotation_deg, 0.0, 1e-6);
+  // A relation across the shift errs by x2^-1 (shift) x2: 1 m, no rotation; the others by 0.
+  const vb::RelationError e1 =
+      vb::relation_error(relations, frame_stamps, shifted, stamps, odometry);
+  EXPECT_NEAR(e1.translation_m, 1.0 * crossing / e1.used, 1e-9);
+  EXPECT_NEAR(e1.translation_sq, 1.0 * crossing / e1.used, 1e-9);
+  EXPECT_NEAR(e1.rotation_deg, 0.0, 1e-6);
+  // Between samples the odometry is interpolated: a relation at 10.05 s -> 10.15 s of the
+  // straight-line motion between samples 0 and 2 (the reference here is linear in between).
+  std::vector<vb::Rigid<3>> line;
+  for (int k = 0; k <= 200; ++k) line.push_back(vb::test::planar_pose(0.5 * k, 0, 0));
+  vb::Relation half;
+  half.t1 = 10.05;
+  half.t2 = 10.15;
+  half.T = vb::test::planar_pose(0.5, 0, 0);
+  const vb::RelationError e2 = vb::relation_error({half}, {10.0}, {line[0]}, stamps, line);
+  EXPECT_EQ(e2.used, 1);
+  EXPECT_NEAR(e2.translation_m, 0.0, 1e-9);
+  EXPECT_THROW(vb::relation_error(relations, frame_stamps, exact, {1.0}, {odometry[0]}),
+               std::invalid_argument);
+}
+
+TEST(CarmenSource, KeepsTheWholeOdometryStreamForRelations) {
+  TempDir tmp;
+  const std::string log = (tmp / "run.clf").string();
+  write_text(log, flaser({1.0, 2.0}, 0, 0, 0, "100.25", "0.25") +
+                      flaser({1.0, 2.0}, 1.5, -0.5, 0.25, "100.05", "0.05"));
+  const auto src = vb::open_sequence(log, "carmen");
+  const auto& info = src->info();
+  EXPECT_EQ(info.odometry_stream_stamps, (std::vector<double>{100.05, 100.25}));  // sorted
+  ASSERT_EQ(info.odometry_stream.size(), 2u);
+  expect_pose_near(info.odometry_stream[0], vb::test::planar_pose(1.5, -0.5, 0.25), 1e-12);
 }

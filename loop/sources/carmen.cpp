@@ -327,6 +327,10 @@ std::unique_ptr<SequenceSource> open(const std::string& dir, const SourceOptions
     info.note = "kept the " + std::to_string(ref.size()) + " of " + std::to_string(scans.size()) +
                 " scans the reference corrects";
   }
+  for (const Scan& s : scans) {
+    info.odometry_stream_stamps.push_back(s.stamp);
+    info.odometry_stream.push_back(planar(s.x, s.y, s.theta));
+  }
   std::vector<Scan> kept;
   for (std::size_t k = 0; k < scans.size(); ++k) {
     if (!keep[k]) continue;

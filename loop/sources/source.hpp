@@ -28,6 +28,10 @@ struct SequenceInfo {
   std::string poses_file;  ///< where `poses` came from ("" when empty)
   /// The recording's own odometry per scan (carmen's wheel odometry); empty otherwise.
   Trajectory odometry;
+  /// The recording's whole odometry stream, every scan's (kept or not), ascending stamps: what
+  /// carries an estimate between frames (loop/relations.hpp); empty without logged odometry.
+  std::vector<double> odometry_stream_stamps;
+  Trajectory odometry_stream;
   bool planar = false;  ///< 2D laser scans: points in the sensor's x-y plane, z = 0
   /// Scans the recording holds; more than size() when some were left out (no pose to match).
   int recorded = 0;
