@@ -293,7 +293,7 @@ std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point dea
         }
       }
     }
-    if ((stack.size() & 255) == 0) detail::throw_if_past(deadline);
+    if ((stack.size() & 255) == 0) throw_if_past(deadline);
   }
   std::vector<int> kept;
   for_each_bit(alive.data(), W, [&](int v) { kept.push_back(v); });
@@ -322,7 +322,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
   Pruned p = prune_by_greedy(g, budget);
   int upper = p.upper;
   int incumbent = static_cast<int>(p.best.size());
-  // Past the deadline, set-up steps throw OutOfTime: the incumbent is kept, status time_limit.
+  // Past the deadline, set-up steps throw DeadlinePassed: the incumbent is kept, status time_limit.
   if (!budget.stopped && static_cast<int>(p.kept.size()) > incumbent && incumbent < upper) try {
       BitGraph sub = detail::permuted(g, p.kept, budget.deadline);
       // A local search on the pruned graph usually beats the greedy starts by 5-30% on
@@ -369,7 +369,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         p.best.clear();
         for (int k : found) p.best.push_back(p.kept[static_cast<std::size_t>(k)]);
       }
-    } catch (const detail::OutOfTime&) {
+    } catch (const DeadlinePassed&) {
       budget.stopped = true;
     }
   return finish(std::move(p.best), true, budget, upper);
@@ -513,7 +513,7 @@ void CliqueAlgorithms::add(CliqueAlgorithmInfo info) {
   info.run = [run = std::move(info.run)](const BitGraph& g, const CliqueSearchParams& p) {
     try {
       return run(g, p);
-    } catch (const detail::OutOfTime&) {
+    } catch (const DeadlinePassed&) {
       CliqueSearchResult r;
       r.stopped = true;
       r.upper_bound = g.size();

@@ -32,7 +32,7 @@ std::vector<int> colour_class_order(const BitGraph& g, int& classes,
   std::vector<int> degree(static_cast<std::size_t>(n)), order;
   order.reserve(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v) {
-    if ((v & 1023) == 1023) detail::throw_if_past(deadline);
+    if ((v & 1023) == 1023) throw_if_past(deadline);
     degree[static_cast<std::size_t>(v)] = g.degree(v);
   }
   std::vector<Word> uncoloured(static_cast<std::size_t>(W), 0), fits(uncoloured.size());
@@ -48,7 +48,7 @@ std::vector<int> colour_class_order(const BitGraph& g, int& classes,
           pick = u;
       });
       if (pick < 0) break;
-      if ((order.size() & 255) == 255) detail::throw_if_past(deadline);
+      if ((order.size() & 255) == 255) throw_if_past(deadline);
       order.push_back(pick);
       const Word* row = g.row(pick);
       fits[static_cast<std::size_t>(pick / kBits)] &= ~(Word{1} << (pick % kBits));

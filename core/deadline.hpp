@@ -3,10 +3,26 @@
 // --time-limit), and handed down; every stage asks it how long is left and whether it passed, so
 // the search, the fit and every null solve of the calibrated rule share one budget.
 #include <algorithm>
+#include <stdexcept>
 
 #include "core/timer.hpp"
 
 namespace verifybench {
+
+/// The one way a stage says the deadline passed before it had a result (the graph's construction,
+/// a search's set-up steps): thrown there, caught where the stage's caller records it as
+/// Status::time_limit (a solver) or CliqueSearchResult::stopped (a clique search), with the best
+/// found so far. Never escapes a solver.
+class DeadlinePassed : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws DeadlinePassed(what) once `at` has passed.
+inline void throw_if_past(SteadyClock::time_point at,
+                          const char* what = "the time limit passed") {
+  if (SteadyClock::now() >= at) throw DeadlinePassed(what);
+}
 
 class Deadline {
  public:

@@ -196,7 +196,7 @@ BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const Graph
     fill_upper_rows<Dim>(g, corr, fc, params.eps, t, threads, deadline, stop);
   });
   if (stop.load()) {
-    throw GraphTimeLimit("the time limit passed while building the correspondence graph (" +
+    throw DeadlinePassed("the time limit passed while building the correspondence graph (" +
                          std::to_string(n) + " vertices)");
   }
   mirror(g);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/correspondences.hpp"
+#include "core/deadline.hpp"
 #include "graph/bitgraph.hpp"
 
 namespace verifybench {
@@ -15,13 +16,7 @@ struct GraphParams {
   double eps = 0.1;                              ///< pair length tolerance [m], > 0
   std::size_t max_bytes = std::size_t{4} << 30;  ///< refuse graphs whose rows exceed this
   int threads = 1;  ///< worker threads (0 = all cores); same graph for any count
-  double time_limit_s = 0.0;  ///< > 0: give up past this many seconds (GraphTimeLimit)
-};
-
-/// Thrown when GraphParams::time_limit_s passed before the graph was complete.
-class GraphTimeLimit : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
+  double time_limit_s = 0.0;  ///< > 0: give up past this many seconds (DeadlinePassed)
 };
 
 /// Eq. (1) for one pair in double precision: the definition every graph of it reproduces.
@@ -32,7 +27,7 @@ bool compatible(const Correspondences<Dim>& corr, int i, int j, double eps) {
 }
 
 /// Throws std::invalid_argument for eps <= 0, std::length_error (with the sizes) when the
-/// adjacency rows would exceed params.max_bytes, GraphTimeLimit when the time limit passed (the
+/// adjacency rows would exceed params.max_bytes, DeadlinePassed when the time limit passed (the
 /// clock is read every 32 rows).
 template <int Dim>
 BitGraph build_compatibility_graph(const Correspondences<Dim>& corr, const GraphParams& params);

@@ -240,7 +240,7 @@ TEST_F(Registered, GraphConstructionStopsAtTheTimeLimit) {
   }
   GraphParams gp;
   gp.time_limit_s = 1e-6;
-  EXPECT_THROW(build_compatibility_graph(set.corr, gp), GraphTimeLimit);
+  EXPECT_THROW(build_compatibility_graph(set.corr, gp), DeadlinePassed);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cliques/detail/local_search.hpp"
+#include "core/deadline.hpp"
 #include "core/timer.hpp"
 #include "graph/bitgraph.hpp"
 
@@ -204,20 +205,17 @@ inline CliqueSearchResult finish(std::vector<int> clique, bool exact, const Sear
   return r;
 }
 
-/// Thrown by the set-up steps of a search (core decomposition, orders, relabelling: O(n^2 / 64)
-/// and more, a few hundred ms at n = 20,000) once the deadline has passed; CliqueAlgorithms turns
-/// it into an empty result with status time_limit, so a limit holds before the search starts too.
-struct OutOfTime {};
-inline void throw_if_past(SteadyClock::time_point deadline) {
-  if (SteadyClock::now() >= deadline) throw OutOfTime{};
-}
+// The set-up steps of a search (core decomposition, orders, relabelling: O(n^2 / 64) and more, a
+// few hundred ms at n = 20,000) call throw_if_past (core/deadline.hpp) once the deadline has
+// passed; CliqueAlgorithms turns DeadlinePassed into an empty result with `stopped`, so a limit
+// holds before the search starts too.
 inline constexpr SteadyClock::time_point kNoDeadline = SteadyClock::time_point::max();
 
 /// The subgraph induced by `vertices` in any order, vertex k of the result being vertices[k].
 BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,
                   SteadyClock::time_point deadline = kNoDeadline);
 
-/// core_decomposition() of max_clique.hpp, throwing OutOfTime past `deadline`.
+/// core_decomposition() of max_clique.hpp, throwing DeadlinePassed past `deadline`.
 CoreDecomposition core_decomposition(const BitGraph& g, SteadyClock::time_point deadline);
 /// greedy_clique() of max_clique.hpp, stopping past `deadline` with the largest clique so far (a
 /// partial greedy clique included) and `stopped` set, or after `max_starts` start vertices.

@@ -26,7 +26,7 @@ std::optional<BitGraph> build_graph_stage(const Correspondences<Dim>& corr,
     result.times.graph_ms = clock.ms();
     result.counters.graph_edges = graph.edge_count();
     return graph;
-  } catch (const GraphTimeLimit& e) {
+  } catch (const DeadlinePassed& e) {
     result.times.graph_ms = clock.ms();
     result.status = Status::time_limit;
     result.accepted = false;
@@ -88,7 +88,7 @@ std::optional<int> clique_number_bound(const Correspondences<Dim>& corr, const S
       const CoreDecomposition cd = core_decomposition(graph);
       if (!cd.core.empty()) bound += *std::max_element(cd.core.begin(), cd.core.end()) + 1;
     }
-  } catch (const GraphTimeLimit&) {
+  } catch (const DeadlinePassed&) {
     return std::nullopt;
   }
   return bound;
