@@ -20,6 +20,7 @@
 #include "generators/world.hpp"
 #include "harness/progress.hpp"
 #include "loop/loop_report.hpp"
+#include "loop/odometry.hpp"
 #endif
 
 namespace verifybench {
@@ -62,57 +63,27 @@ void add_loop_options(Options& o) {
            "radish2d's aces.relations): the report adds their relation error without and with "
            "loops; needs a sequence that logs its odometry (carmen)")
       .add("first-frame", "I", "0", "first frame of the excerpt")
-      .add("last-frame", "I", "-1", "last frame of the excerpt (-1 = the end)")
-      .add("scan-spacing", "M", "2", "use a scan every M metres of travel");
-  o.group("simulated world and LiDAR (without --sequence)")
-      .add("lidar-beams", "K", "64", "beams, evenly from +2 to -24.8 deg")
-      .add("lidar-columns", "K", "1024", "azimuth steps a sweep")
-      .add("lidar-max-range", "M", "80", "farthest return")
-      .add("lidar-noise", "M", "0.02", "range noise sigma")
-      .add("lidar-dropout", "P", "0.05", "probability of a lost return")
-      .add("world-building-density", "P", "0.2", "chance of a building in a block cell")
-      .add("world-kerb-density", "P", "0.45",
-           "chance of a pole, tree, car or clutter in a kerb cell");
+      .add("last-frame", "I", "-1", "last frame of the excerpt (-1 = the end)");
+  // Every stage's settings are rows declared beside the stage (core/param_rows.hpp): the options,
+  // their defaults and ranges here, and the report's parameters.loop below, come from them.
+  const LoopConfig defaults;
+  o.group("simulated world and LiDAR (without --sequence)");
+  cli::add_rows(o, lidar_param_rows(), defaults.lidar);
+  cli::add_rows(o, world_param_rows(), defaults.world);
   o.group("odometry")
       .add("odometry", "drift|gicp|poses|log", "drift",
            "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to the "
            "last --gicp-map-scans scans; poses: --odometry-file (e.g. KISS-ICP's output); log: "
            "the recording's own (a CARMEN log's odometry)")
       .add("odometry-file", "FILE", "",
-           "poses: a TUM or KITTI file, matched to the scans by "
-           "stamp, else by index")
-      .add("gicp-map-scans", "K", "1", "gicp: scans in the local map (1 = scan to scan)")
-      .add("gicp-voxel", "M", "1", "gicp: scans downsampled to this voxel")
-      .add("gicp-max-distance", "M", "1", "gicp: correspondence distance")
-      .add("drift-trans", "F", "0.01", "translation sigma per metre of step")
-      .add("drift-yaw-deg", "DEG", "0.05", "yaw random walk [deg / sqrt(m)]")
-      .add("drift-tilt-deg", "DEG", "0.005", "roll and pitch random walk [deg / sqrt(m)]");
-  o.group("maps, retrieval and ground truth")
-      .add("map-length", "M", "100", "odometry travel per local map")
-      .add("map-voxel", "M", "0.5", "local map voxel")
-      .add("min-map-gap", "K", "3", "maps fewer than K apart are not compared")
-      .add("candidates", "K", "2", "maps verified per query (most HBST votes)")
-      .add("min-votes", "K", "5", "fewer votes: not a candidate")
-      .add("retrieval", "KIND", "auto",
-           "hbst (binary descriptors), kdtree (fpfh), all (every older map; small sequences); "
-           "auto: hbst or kdtree by the pipeline")
-      .add("exact-retrieval", "", "",
-           "HBST votes by the true nearest descriptor (backtracking) instead of one leaf")
-      .add("gt-overlap", "F", "0.5", "true closure: occupancy overlap above F of the smaller map")
-      .add("gt-max-distance", "M", "100", "true closure: anchors closer than M")
-      .add("pose-tolerance", "M", "6", "correct closure: relative translation error under M")
-      .add("loop-sigma-trans", "M", "0.5", "pose graph: loop edge translation sigma")
-      .add("loop-sigma-rot-deg", "DEG", "2", "pose graph: loop edge rotation sigma")
-      .add("dense-overlap", "F", "0",
-           "dense check after the accept rule: ICP from the fitted motion, then accept only when "
-           "the maps' occupied cells overlap by more than F of the smaller map (0 = off, the "
-           "paper's setting)")
-      .add("dense-cell", "M", "0.5", "dense check: overlap cell size")
-      .add("dense-icp-voxel", "M", "0.5", "dense check: both maps voxelised for ICP")
-      .add("dense-icp-distance", "M", "1", "dense check: ICP correspondence distance")
-      .add("odometry-prior", "", "",
-           "each candidate carries odometry's motion as a pose prior (drift-model sigmas of the "
-           "travel between the maps): the pvalue rule's --prior-gate and jcbb's prior mode use it");
+           "poses: a TUM or KITTI file, matched to the scans by stamp, else by index");
+  cli::add_rows(o, gicp_param_rows(), defaults.gicp);
+  cli::add_rows(o, drift_param_rows(), defaults.drift);
+  o.group("scans, maps, retrieval, ground truth, pose graph, dense check");
+  cli::add_rows(o, loop_param_rows(), defaults);
+  cli::add_rows(o, local_map_param_rows(), defaults.maps);
+  cli::add_rows(o, retrieval_param_rows(), defaults.retrieval);
+  cli::add_rows(o, dense_check_param_rows(), defaults.dense);
   o.group(
       "front end of each local map (the same options as `verifybench extract`; --max-hamming "
       "and --max-feature-distance also bound retrieval's votes)");
@@ -258,43 +229,20 @@ LoopConfig loop_config(const Options& o) {
   }
   if (!stamps.empty()) c.stamps.assign(stamps.begin() + first, stamps.begin() + last + 1);
   c.first_frame = static_cast<int>(first);
-  c.scan_spacing = o.real("scan-spacing", 1e-3, 1e6);
+  cli::read_rows(o, loop_param_rows(), c);
   cli::read_rows(o, frontend_param_rows(), c.extract);
-  c.lidar.beams = static_cast<int>(o.integer("lidar-beams", 1, 1024));
-  c.lidar.columns = static_cast<int>(o.integer("lidar-columns", 1, 100000));
-  c.lidar.max_range = o.real("lidar-max-range", 3.0, 1e4);
-  c.lidar.range_noise = o.real("lidar-noise", 0.0, 10.0);
-  c.lidar.dropout = o.real("lidar-dropout", 0.0, 0.99);
-  c.world.building_density = o.real("world-building-density", 0.0, 1.0);
-  c.world.kerb_density = o.real("world-kerb-density", 0.0, 1.0);
+  cli::read_rows(o, lidar_param_rows(), c.lidar);
+  cli::read_rows(o, world_param_rows(), c.world);
   c.odometry = o.text("odometry");
   if (c.odometry != "drift" && c.odometry != "gicp" && c.odometry != "poses" &&
       c.odometry != "log") {
     throw UsageError("--odometry: '" + c.odometry + "' is not drift, gicp, poses or log");
   }
-  c.gicp.voxel = o.real("gicp-voxel", 0.01, 100.0);
-  c.gicp.max_correspondence = o.real("gicp-max-distance", 0.01, 1000.0);
-  c.gicp.map_scans = static_cast<int>(o.integer("gicp-map-scans", 1, 1000));
-  c.drift.trans_rel = o.real("drift-trans", 0.0, 1.0);
-  c.drift.yaw_deg = o.real("drift-yaw-deg", 0.0, 90.0);
-  c.drift.tilt_deg = o.real("drift-tilt-deg", 0.0, 90.0);
-  c.maps.map_length = o.real("map-length", 1.0, 1e6);
-  c.maps.voxel = o.real("map-voxel", 0.01, 100.0);
-  c.retrieval.min_map_gap = static_cast<int>(o.integer("min-map-gap", 1, 1 << 20));
-  c.retrieval.candidates = static_cast<int>(o.integer("candidates", 1, 1 << 20));
-  c.retrieval.min_votes = static_cast<int>(o.integer("min-votes", 1, 1 << 30));
-  c.retrieval.exact = o.flag("exact-retrieval");
-  c.retrieval.method = o.text("retrieval");
-  c.gt_overlap = o.real("gt-overlap", 1e-6, 1.0);
-  c.gt_max_distance = o.real("gt-max-distance", 1e-6, 1e9);
-  c.pose_tolerance = o.real("pose-tolerance", 1e-6, 1e9);
-  c.loop_sigma_trans = o.real("loop-sigma-trans", 1e-6, 1e6);
-  c.odometry_prior = o.flag("odometry-prior");
-  c.dense.min_overlap = o.real("dense-overlap", 0.0, 0.999);
-  c.dense.cell = o.real("dense-cell", 1e-3, 1e3);
-  c.dense.icp.voxel = o.real("dense-icp-voxel", 1e-3, 1e3);
-  c.dense.icp.max_correspondence = o.real("dense-icp-distance", 1e-3, 1e3);
-  c.loop_sigma_rot_deg = o.real("loop-sigma-rot-deg", 1e-6, 180.0);
+  cli::read_rows(o, gicp_param_rows(), c.gicp);
+  cli::read_rows(o, drift_param_rows(), c.drift);
+  cli::read_rows(o, local_map_param_rows(), c.maps);
+  cli::read_rows(o, retrieval_param_rows(), c.retrieval);
+  cli::read_rows(o, dense_check_param_rows(), c.dense);
   c.solvers = cli::solver_names(o);
   c.params = cli::solver_params(o, loop_solver_defaults());
   c.accept = cli::accept_params(o);
@@ -323,55 +271,31 @@ nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
                {"trajectory_frame", o.text("trajectory-frame")},
                {"first_frame", c.first_frame},
                {"frames", c.truth.size()},
-               {"scan_spacing_m", c.scan_spacing},
                {"frontend", cli::rows_json(frontend_param_rows(), c.extract)},
-               {"map_length_m", c.maps.map_length},
-               {"map_voxel_m", c.maps.voxel},
                {"occupancy_voxel_m", c.maps.occupancy_voxel},
-               {"min_map_gap", c.retrieval.min_map_gap},
-               {"candidates", c.retrieval.candidates},
-               {"min_votes", c.retrieval.min_votes},
-               {"exact_retrieval", c.retrieval.exact},
-               {"retrieval", c.retrieval.method},
-               {"gt_overlap", c.gt_overlap},
-               {"gt_max_distance_m", c.gt_max_distance},
-               {"pose_tolerance_m", c.pose_tolerance},
-               {"loop_sigma_trans_m", c.loop_sigma_trans},
-               {"loop_sigma_rot_deg", c.loop_sigma_rot_deg},
-               {"odometry_prior", c.odometry_prior},
-               {"dense_check",
-                {{"min_overlap", c.dense.min_overlap},
-                 {"cell_m", c.dense.cell},
-                 {"icp_voxel_m", c.dense.icp.voxel},
-                 {"icp_max_distance_m", c.dense.icp.max_correspondence},
-                 {"icp_max_iterations", c.dense.icp.max_iterations}}},
+               {"dense_check", cli::rows_json(dense_check_param_rows(), c.dense)},
                {"odometry", c.odometry},
-               {"gicp",
-                {{"voxel_m", c.gicp.voxel},
-                 {"max_correspondence_m", c.gicp.max_correspondence},
-                 {"max_iterations", c.gicp.max_iterations},
-                 {"map_scans", c.gicp.map_scans}}},
-               {"drift",
-                {{"trans_rel", c.drift.trans_rel},
-                 {"yaw_deg_per_sqrt_m", c.drift.yaw_deg},
-                 {"tilt_deg_per_sqrt_m", c.drift.tilt_deg}}},
+               {"gicp", cli::rows_json(gicp_param_rows(), c.gicp)},
+               {"drift", cli::rows_json(drift_param_rows(), c.drift)},
                {"solvers", c.solvers}};
+  // The rows' values by key, then the fixed settings no option changes.
+  nlohmann::json& loop = p["loop"];
+  loop.update(cli::rows_json(loop_param_rows(), c));
+  loop.update(cli::rows_json(local_map_param_rows(), c.maps));
+  loop.update(cli::rows_json(retrieval_param_rows(), c.retrieval));
+  loop["dense_check"]["icp_max_iterations"] = c.dense.icp.max_iterations;
+  loop["gicp"]["max_iterations"] = c.gicp.max_iterations;
   if (!c.source) {
-    p["loop"]["lidar"] = {{"beams", c.lidar.beams},
-                          {"columns", c.lidar.columns},
-                          {"fov_up_deg", c.lidar.fov_up_deg},
+    loop["lidar"] = cli::rows_json(lidar_param_rows(), c.lidar);
+    loop["lidar"].update({{"fov_up_deg", c.lidar.fov_up_deg},
                           {"fov_down_deg", c.lidar.fov_down_deg},
-                          {"min_range_m", c.lidar.min_range},
-                          {"max_range_m", c.lidar.max_range},
-                          {"range_noise_m", c.lidar.range_noise},
-                          {"dropout", c.lidar.dropout}};
-    p["loop"]["world"] = {{"road_half_width_m", c.world.road_half_width},
+                          {"min_range_m", c.lidar.min_range}});
+    loop["world"] = cli::rows_json(world_param_rows(), c.world);
+    loop["world"].update({{"road_half_width_m", c.world.road_half_width},
                           {"kerb_band_m", c.world.kerb_band},
                           {"building_setback_m", c.world.building_setback},
                           {"building_depth_m", c.world.building_depth},
-                          {"building_density", c.world.building_density},
-                          {"kerb_density", c.world.kerb_density},
-                          {"sensor_height_m", c.world.sensor_height}};
+                          {"sensor_height_m", c.world.sensor_height}});
   }
   return p;
 }

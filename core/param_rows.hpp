@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace verifybench {
@@ -95,6 +96,25 @@ ParamRow<P> param_row(T P::*member, ParamRow<P> row) {
   row.get = [=](const P& p) { return static_cast<double>(p.*member); };
   row.set = [=](P& p, double v) { p.*member = static_cast<T>(v); };
   return row;
+}
+
+/// A row bound to `p.*member` from its words: the kind follows the member's type (bool: a flag,
+/// an integer type: integer, else real); `expected` is the range in words for messages.
+template <class P, class T>
+ParamRow<P> field_row(T P::*member, std::string option, std::string key, std::string value_name,
+                      std::string help, double min = 0.0, double max = 0.0,
+                      std::string expected = "") {
+  ParamRow<P> row;
+  row.option = std::move(option);
+  row.key = std::move(key);
+  row.value_name = std::move(value_name);
+  row.help = std::move(help);
+  using K = typename ParamRow<P>::Kind;
+  row.kind = std::is_same_v<T, bool> ? K::flag : std::is_integral_v<T> ? K::integer : K::real;
+  row.min = min;
+  row.max = max;
+  row.expected = std::move(expected);
+  return param_row(member, std::move(row));
 }
 
 /// A row bound to `p.*outer.*member` (a field of a nested struct).

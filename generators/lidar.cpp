@@ -155,4 +155,20 @@ std::vector<Eigen::Vector3f> LidarSimulator::scan(const Rigid<3>&, const LidarPa
 
 #endif
 
+const std::vector<ParamRow<LidarParams>>& lidar_param_rows() {
+  using P = LidarParams;
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::beams, "lidar-beams", "beams", "K", "beams, evenly from +2 to -24.8 deg", 1,
+                1024, "an integer in [1, 1024]"),
+      field_row(&P::columns, "lidar-columns", "columns", "K", "azimuth steps a sweep", 1, 100000,
+                "an integer in [1, 100000]"),
+      field_row(&P::max_range, "lidar-max-range", "max_range_m", "M", "farthest return [m]", 3.0,
+                1e4, "a value in [3, 10000]"),
+      field_row(&P::range_noise, "lidar-noise", "range_noise_m", "M", "range noise sigma [m]", 0.0,
+                10.0, "a value in [0, 10]"),
+      field_row(&P::dropout, "lidar-dropout", "dropout", "P", "probability of a lost return", 0.0,
+                0.99, "a value in [0, 0.99]")};
+  return rows;
+}
+
 }  // namespace verifybench

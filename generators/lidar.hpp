@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/correspondences.hpp"
+#include "core/param_rows.hpp"
 #include "generators/world.hpp"
 
 namespace verifybench {
@@ -30,6 +31,9 @@ struct LidarParams {
   /// Throws std::invalid_argument naming the field and value.
   void validate() const;
 };
+
+/// The LiDAR settings a user sets (`loop --lidar-*`), as rows (core/param_rows.hpp).
+const std::vector<ParamRow<LidarParams>>& lidar_param_rows();
 
 /// True when this build ray-casts (VERIFYBENCH_WITH_EMBREE).
 bool lidar_available();

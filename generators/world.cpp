@@ -325,4 +325,15 @@ std::vector<Rigid<3>> block_laps(double width, double height, int laps, double s
   return path;
 }
 
+const std::vector<ParamRow<WorldParams>>& world_param_rows() {
+  using P = WorldParams;
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::building_density, "world-building-density", "building_density", "P",
+                "chance of a building in a block cell", 0.0, 1.0, "a value in [0, 1]"),
+      field_row(&P::kerb_density, "world-kerb-density", "kerb_density", "P",
+                "chance of a pole, tree, car or clutter in a kerb cell", 0.0, 1.0,
+                "a value in [0, 1]")};
+  return rows;
+}
+
 }  // namespace verifybench

@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <map>
 #include <string>
+
+#include "core/param_rows.hpp"
 #include <vector>
 
 #include "core/correspondences.hpp"
@@ -48,6 +50,9 @@ struct WorldParams {
   /// Throws std::invalid_argument naming the field and value.
   void validate() const;
 };
+
+/// The world's settings a user sets (`loop --world-*`), as rows (core/param_rows.hpp).
+const std::vector<ParamRow<WorldParams>>& world_param_rows();
 
 struct World {
   Mesh mesh;

@@ -99,4 +99,33 @@ DenseCheck dense_check(const LocalMap& query, const LocalMap& match, const Rigid
   return out;
 }
 
+const std::vector<ParamRow<DenseCheckParams>>& dense_check_param_rows() {
+  using P = DenseCheckParams;
+  auto nested = [](double RefineParams::*member, std::string option, std::string key,
+                   std::string help) {
+    ParamRow<P> row;
+    row.option = std::move(option);
+    row.key = std::move(key);
+    row.value_name = "M";
+    row.help = std::move(help);
+    row.min = 1e-3;
+    row.max = 1e3;
+    row.expected = "a value in [0.001, 1000]";
+    return param_row(&P::icp, member, row);
+  };
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::min_overlap, "dense-overlap", "min_overlap", "F",
+                "dense check after the accept rule: ICP from the fitted motion, then accept only "
+                "when the maps' occupied cells overlap by more than F of the smaller map (0 = off, "
+                "the paper's setting)",
+                0.0, 0.999, "a value in [0, 0.999]"),
+      field_row(&P::cell, "dense-cell", "cell_m", "M", "dense check: overlap cell size", 1e-3, 1e3,
+                "a value in [0.001, 1000]"),
+      nested(&RefineParams::voxel, "dense-icp-voxel", "icp_voxel_m",
+             "dense check: both maps voxelised for ICP"),
+      nested(&RefineParams::max_correspondence, "dense-icp-distance", "icp_max_distance_m",
+             "dense check: ICP correspondence distance")};
+  return rows;
+}
+
 }  // namespace verifybench

@@ -6,6 +6,7 @@
 // truth measures it (loop/local_maps.hpp). A rigid alias (a motion that a repetitive part of the
 // scene agrees with) leaves the rest of the maps apart; KISS-SLAM accepts a closure only above an
 // overlap of 0.4 after ICP. Applied after the accept rule, to either rule; 0 = off.
+#include "core/param_rows.hpp"
 #include "frontend/refine.hpp"
 #include "loop/local_maps.hpp"
 
@@ -20,6 +21,9 @@ struct DenseCheckParams {
   /// Throws std::invalid_argument naming the field and value.
   void validate() const;
 };
+
+/// The dense check's settings a user sets (`loop --dense-*`), as rows.
+const std::vector<ParamRow<DenseCheckParams>>& dense_check_param_rows();
 
 struct DenseCheck {
   bool ran = false;

@@ -106,4 +106,14 @@ LocalMap build_local_map(int index, const std::vector<int>& frames,
   return map;
 }
 
+const std::vector<ParamRow<LocalMapParams>>& local_map_param_rows() {
+  using P = LocalMapParams;
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::map_length, "map-length", "map_length_m", "M",
+                "odometry travel per local map [m]", 1.0, 1e6, "a value in [1, 1e6]"),
+      field_row(&P::voxel, "map-voxel", "map_voxel_m", "M", "local map voxel [m]", 0.01, 100.0,
+                "a value in [0.01, 100]")};
+  return rows;
+}
+
 }  // namespace verifybench

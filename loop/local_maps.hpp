@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/correspondences.hpp"
+#include "core/param_rows.hpp"
 
 namespace verifybench {
 
@@ -19,6 +20,9 @@ struct LocalMapParams {
   /// Throws std::invalid_argument naming the field and value.
   void validate() const;
 };
+
+/// The local maps' settings a user sets (`loop --map-length`, `--map-voxel`), as rows.
+const std::vector<ParamRow<LocalMapParams>>& local_map_param_rows();
 
 struct LocalMap {
   int index = 0;

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "datasets/trajectory.hpp"
+#include "core/param_rows.hpp"
+#include "frontend/scan_odometry.hpp"
 #include "generators/odometry.hpp"
 #include "loop/local_maps.hpp"
 
@@ -65,5 +67,10 @@ OdometryInfo drift_odometry_kind();
 OdometryInfo gicp_odometry_kind();
 /// LoopConfig::odometry_poses as they are, under `name` ("poses", "log").
 OdometryInfo poses_odometry_kind(const std::string& name, const std::string& help);
+
+/// The `drift` kind's settings (odometry_drift.cpp; they also weigh the pose graph's odometry edges
+/// and a candidate's pose prior) and the `gicp` kind's (odometry_gicp.cpp), as rows.
+const std::vector<ParamRow<DriftParams>>& drift_param_rows();
+const std::vector<ParamRow<ScanOdometryParams>>& gicp_param_rows();
 
 }  // namespace verifybench

@@ -31,4 +31,16 @@ OdometryInfo drift_odometry_kind() {
   return info;
 }
 
+const std::vector<ParamRow<DriftParams>>& drift_param_rows() {
+  using P = DriftParams;
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::trans_rel, "drift-trans", "trans_rel", "F",
+                "translation sigma per metre of step", 0.0, 1.0, "a value in [0, 1]"),
+      field_row(&P::yaw_deg, "drift-yaw-deg", "yaw_deg_per_sqrt_m", "DEG",
+                "yaw random walk [deg / sqrt(m)]", 0.0, 90.0, "a value in [0, 90]"),
+      field_row(&P::tilt_deg, "drift-tilt-deg", "tilt_deg_per_sqrt_m", "DEG",
+                "roll and pitch random walk [deg / sqrt(m)]", 0.0, 90.0, "a value in [0, 90]")};
+  return rows;
+}
+
 }  // namespace verifybench

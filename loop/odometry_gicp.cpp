@@ -29,4 +29,17 @@ OdometryInfo gicp_odometry_kind() {
   return info;
 }
 
+const std::vector<ParamRow<ScanOdometryParams>>& gicp_param_rows() {
+  using P = ScanOdometryParams;
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::map_scans, "gicp-map-scans", "map_scans", "K",
+                "gicp: scans in the local map (1 = scan to scan)", 1, 1000,
+                "an integer in [1, 1000]"),
+      field_row(&P::voxel, "gicp-voxel", "voxel_m", "M", "gicp: scans downsampled to this voxel",
+                0.01, 100.0, "a value in [0.01, 100]"),
+      field_row(&P::max_correspondence, "gicp-max-distance", "max_correspondence_m", "M",
+                "gicp: correspondence distance", 0.01, 1000.0, "a value in [0.01, 1000]")};
+  return rows;
+}
+
 }  // namespace verifybench

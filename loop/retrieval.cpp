@@ -84,4 +84,34 @@ std::vector<Candidate> retrieve_candidates(const std::vector<Features>& maps,
   return out;
 }
 
+const std::vector<ParamRow<RetrievalParams>>& retrieval_param_rows() {
+  using P = RetrievalParams;
+  static const std::vector<ParamRow<P>> rows = [] {
+    std::vector<ParamRow<P>> r;
+    r.push_back(field_row(&P::min_map_gap, "min-map-gap", "min_map_gap", "K",
+                          "maps fewer than K apart are not compared", 1, 1 << 20,
+                          "an integer >= 1"));
+    r.push_back(field_row(&P::candidates, "candidates", "candidates", "K",
+                          "maps verified per query (most votes)", 1, 1 << 20, "an integer >= 1"));
+    r.push_back(field_row(&P::min_votes, "min-votes", "min_votes", "K",
+                          "fewer votes: not a candidate", 1, 1 << 30, "an integer >= 1"));
+    ParamRow<P> method;
+    method.option = "retrieval";
+    method.key = "retrieval";
+    method.value_name = "KIND";
+    method.help =
+        "hbst (binary descriptors), kdtree (fpfh), all (every older map; small sequences); auto: "
+        "hbst or kdtree by the pipeline";
+    method.kind = ParamRow<P>::Kind::text;
+    method.get_text = [](const P& p) { return p.method; };
+    method.set_text = [](P& p, const std::string& v) { p.method = v; };  // validate() checks it
+    r.push_back(method);
+    r.push_back(field_row(&P::exact, "exact-retrieval", "exact_retrieval", "",
+                          "HBST votes by the true nearest descriptor (backtracking) instead of one "
+                          "leaf"));
+    return r;
+  }();
+  return rows;
+}
+
 }  // namespace verifybench

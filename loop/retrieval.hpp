@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/param_rows.hpp"
 #include "frontend/features.hpp"
 #include "frontend/hbst.hpp"
 
@@ -32,6 +33,11 @@ struct RetrievalParams {
   /// Throws std::invalid_argument naming the field and value.
   void validate() const;
 };
+
+/// Retrieval's settings a user sets (`loop --retrieval`, `--candidates`, `--min-votes`,
+/// `--min-map-gap`, `--exact-retrieval`; --max-hamming and --max-feature-distance are the front
+/// end's), as rows.
+const std::vector<ParamRow<RetrievalParams>>& retrieval_param_rows();
 
 struct Candidate {
   int query = 0;  ///< the newer map (source of the verification)

@@ -424,4 +424,27 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
   return run;
 }
 
+const std::vector<ParamRow<LoopConfig>>& loop_param_rows() {
+  using P = LoopConfig;
+  static const std::vector<ParamRow<P>> rows = {
+      field_row(&P::scan_spacing, "scan-spacing", "scan_spacing_m", "M",
+                "use a scan every M metres of travel", 1e-3, 1e6, "a value in [0.001, 1e6]"),
+      field_row(&P::gt_overlap, "gt-overlap", "gt_overlap", "F",
+                "true closure: occupancy overlap above F of the smaller map", 1e-6, 1.0,
+                "a value in (0, 1]"),
+      field_row(&P::gt_max_distance, "gt-max-distance", "gt_max_distance_m", "M",
+                "true closure: anchors closer than M", 1e-6, 1e9, "a value > 0"),
+      field_row(&P::pose_tolerance, "pose-tolerance", "pose_tolerance_m", "M",
+                "correct closure: relative translation error under M", 1e-6, 1e9, "a value > 0"),
+      field_row(&P::loop_sigma_trans, "loop-sigma-trans", "loop_sigma_trans_m", "M",
+                "pose graph: loop edge translation sigma", 1e-6, 1e6, "a value > 0"),
+      field_row(&P::loop_sigma_rot_deg, "loop-sigma-rot-deg", "loop_sigma_rot_deg", "DEG",
+                "pose graph: loop edge rotation sigma", 1e-6, 180.0, "a value in (0, 180]"),
+      field_row(&P::odometry_prior, "odometry-prior", "odometry_prior", "",
+                "each candidate carries odometry's motion as a pose prior (drift-model sigmas of "
+                "the travel between the maps): the pvalue rule's --prior-gate and jcbb's prior "
+                "mode use it")};
+  return rows;
+}
+
 }  // namespace verifybench

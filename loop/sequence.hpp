@@ -105,6 +105,11 @@ struct LoopConfig {
   void validate() const;
 };
 
+/// The loop's own settings a user sets (`loop --scan-spacing`, `--gt-*`, `--pose-tolerance`,
+/// `--loop-sigma-*`, `--odometry-prior`), as rows; each stage declares its own beside its params
+/// (local_maps.hpp, retrieval.hpp, dense_check.hpp, odometry.hpp, generators' lidar and world).
+const std::vector<ParamRow<LoopConfig>>& loop_param_rows();
+
 struct MapInfo {
   int index = 0, first_frame = 0, last_frame = 0, anchor = 0, scans = 0;
   int points = 0, keypoints = 0, occupied_cells = 0;
