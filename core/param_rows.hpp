@@ -117,6 +117,24 @@ ParamRow<P> field_row(T P::*member, std::string option, std::string key, std::st
   return param_row(member, std::move(row));
 }
 
+/// A text row: `get` reads the value as text, `set` writes it (throwing std::invalid_argument for
+/// a bad text, which the CLI reports with the option).
+template <class P>
+ParamRow<P> text_row(std::string option, std::string key, std::string value_name, std::string help,
+                     std::function<std::string(const P&)> get,
+                     std::function<void(P&, const std::string&)> set, std::string expected = "") {
+  ParamRow<P> row;
+  row.option = std::move(option);
+  row.key = std::move(key);
+  row.value_name = std::move(value_name);
+  row.help = std::move(help);
+  row.kind = ParamRow<P>::Kind::text;
+  row.expected = std::move(expected);
+  row.get_text = std::move(get);
+  row.set_text = std::move(set);
+  return row;
+}
+
 /// A row bound to `p.*outer.*member` (a field of a nested struct).
 template <class P, class S, class T>
 ParamRow<P> param_row(S P::*outer, T S::*member, ParamRow<P> row) {

@@ -95,17 +95,12 @@ const std::vector<ParamRow<RetrievalParams>>& retrieval_param_rows() {
                           "maps verified per query (most votes)", 1, 1 << 20, "an integer >= 1"));
     r.push_back(field_row(&P::min_votes, "min-votes", "min_votes", "K",
                           "fewer votes: not a candidate", 1, 1 << 30, "an integer >= 1"));
-    ParamRow<P> method;
-    method.option = "retrieval";
-    method.key = "retrieval";
-    method.value_name = "KIND";
-    method.help =
+    r.push_back(text_row<P>(
+        "retrieval", "retrieval", "KIND",
         "hbst (binary descriptors), kdtree (fpfh), all (every older map; small sequences); auto: "
-        "hbst or kdtree by the pipeline";
-    method.kind = ParamRow<P>::Kind::text;
-    method.get_text = [](const P& p) { return p.method; };
-    method.set_text = [](P& p, const std::string& v) { p.method = v; };  // validate() checks it
-    r.push_back(method);
+        "hbst or kdtree by the pipeline",
+        [](const P& p) { return p.method; },
+        [](P& p, const std::string& v) { p.method = v; }));  // validate() checks the name
     r.push_back(field_row(&P::exact, "exact-retrieval", "exact_retrieval", "",
                           "HBST votes by the true nearest descriptor (backtracking) instead of one "
                           "leaf"));
