@@ -188,7 +188,7 @@ struct Settings {
 };
 using SettingRow = vb::ParamRow<Settings>;
 
-std::vector<SettingRow> setting_rows() {
+std::vector<SettingRow> make_setting_rows() {
   const std::vector<vb::ParamField> solver = vb::solver_param_rows();
   const auto common = static_cast<std::ptrdiff_t>(vb::common_param_family().fields.size());
   // The CLI's --help order: the common rows, the accept rule's, then every family's.
@@ -199,6 +199,12 @@ std::vector<SettingRow> setting_rows() {
                                &Settings::solver)) {
     rows.push_back(r);
   }
+  return rows;
+}
+
+/// The table, built once (solve() reads every call's keywords through it).
+const std::vector<SettingRow>& setting_rows() {
+  static const std::vector<SettingRow> rows = make_setting_rows();
   return rows;
 }
 
