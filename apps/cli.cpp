@@ -8,56 +8,37 @@
 
 namespace verifybench::cli {
 
-void add_solver_options(Options& o, const SolverOptionDefaults& d) {
-  o.group("solvers").add("solvers", "A,B", "clique,ransac",
-                         "solvers to run (see `verifybench list`)");
-  add_rows(o, common_param_family().fields, d.params);
+void add_solver_options(Options& o, SolverOptions& s) {
+  o.group("solvers").list("solvers", s.solvers, "A,B", "solvers to run (see `verifybench list`)");
+  add_rows(o, common_param_family().fields, s.params);
   o.group("accept rule");
-  add_rows(o, accept_param_rows(), d.accept);
+  add_rows(o, accept_param_rows(), s.accept);
   for (const ParamFamily& family : param_families()) {
     o.group(family.title);
-    add_rows(o, family.fields, d.params);
+    add_rows(o, family.fields, s.params);
   }
   o.group("success, reproducibility, output")
-      .add("success-rot-deg", "DEG", "15", "success: rotation error under this [deg]")
-      .add("success-trans", "M", "0.3", "success: translation error under this [m]")
-      .add("seed", "S", "1", "seed of every random draw (recorded in the report)")
-      .add("out", d.out_value, "", d.out_help)
-      .add("quiet", "", "", "no progress lines");
+      .real("success-rot-deg", s.criteria.max_rotation_error_deg, "DEG",
+            "success: rotation error under this [deg]", 0, 180)
+      .real("success-trans", s.criteria.max_translation_error, "M",
+            "success: translation error under this [m]", 0, 1e12)
+      .seed("seed", s.params.seed, "seed of every random draw (recorded in the report)")
+      .text("out", s.out, s.out_value, s.out_help)
+      .flag("quiet", s.quiet, "no progress lines");
 }
 
-SolverParams solver_params(const Options& o, const SolverParams& defaults) {
-  SolverParams p = defaults;
-  read_rows(o, solver_param_rows(), p);
-  p.seed = o.seed("seed");
+void check_solver_options(SolverOptions& s) {
+  SolverRegistry::check(s.solvers);
   try {
-    p.validate();
+    s.params.validate();
+    s.accept.validate();
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  return p;
 }
 
-AcceptParams accept_params(const Options& o, const AcceptParams& defaults) {
-  AcceptParams a = defaults;
-  read_rows(o, accept_param_rows(), a);
-  try {
-    a.validate();
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  return a;
-}
-
-SuccessCriteria criteria(const Options& o) {
-  SuccessCriteria c;
-  c.max_rotation_error_deg = o.real("success-rot-deg", 0, 180);
-  c.max_translation_error = o.real("success-trans", 0, 1e12);
-  return c;
-}
-
-std::string report_path(const Options& o) {
-  const std::string out = o.required("out");
+std::string report_path(const Options& o, const std::string& out) {
+  o.require("out");
   if (out == "-") return out;  // the report on stdout
   try {
     check_report_path(out);
@@ -65,12 +46,6 @@ std::string report_path(const Options& o) {
     throw UsageError(std::string("--out: ") + e.what());
   }
   return out;
-}
-
-std::vector<std::string> solver_names(const Options& o) {
-  const auto names = o.list("solvers");
-  SolverRegistry::check(names);
-  return names;
 }
 
 nlohmann::json params_json(const SolverParams& p, const AcceptParams& a, const SuccessCriteria& c) {
@@ -84,21 +59,20 @@ nlohmann::json params_json(const SolverParams& p, const AcceptParams& a, const S
   return j;
 }
 
-void add_prior_options(Options& o, const std::string& what) {
-  o.add("prior-rot-deg", "DEG", "0",
-        "give " + what +
-            " a pose prior drawn around the truth: rotation sigma per axis [deg] (with "
-            "--prior-trans; jcbb uses it)")
-      .add("prior-trans", "M", "0", "pose prior translation sigma per axis [m]");
+void add_prior_options(Options& o, const std::string& what, PriorOptions& p) {
+  o.real("prior-rot-deg", p.rot_deg, "DEG",
+         "give " + what +
+             " a pose prior drawn around the truth: rotation sigma per axis [deg] (with "
+             "--prior-trans; jcbb uses it)",
+         0.0, 180.0)
+      .real("prior-trans", p.trans, "M", "pose prior translation sigma per axis [m]", 0.0, 1e9);
 }
 
-std::pair<double, double> prior_sigmas(const Options& o) {
-  const double rot = o.real("prior-rot-deg", 0.0, 180.0) * M_PI / 180.0;
-  const double trans = o.real("prior-trans", 0.0, 1e9);
-  if ((rot > 0.0) != (trans > 0.0)) {
+std::pair<double, double> prior_sigmas(const PriorOptions& p) {
+  if ((p.rot_deg > 0.0) != (p.trans > 0.0)) {
     throw UsageError("--prior-rot-deg and --prior-trans go together (both > 0)");
   }
-  return {rot, trans};
+  return {p.rot_deg * M_PI / 180.0, p.trans};
 }
 
 void print_point(const std::vector<TrialRecord>& rows) {
@@ -113,26 +87,24 @@ void print_point(const std::vector<TrialRecord>& rows) {
   }
 }
 
-void add_shard_option(Options& o) {
-  o.group("sharding")
-      .add("shard", "I/N", "",
-           "run only the I-th of N deterministic, balanced slices of the work (1 <= I <= N); "
-           "`verifybench merge` joins the N reports into the unsharded one");
+void add_shard_option(Options& o, Shard& shard) {
+  o.group("sharding").bind(
+      "shard", "I/N", "",
+      "run only the I-th of N deterministic, balanced slices of the work (1 <= I <= N); "
+      "`verifybench merge` joins the N reports into the unsharded one",
+      [&shard](const std::string& v) {
+        try {
+          shard = parse_shard(v);
+        } catch (const std::invalid_argument& e) {
+          throw UsageError(e.what());
+        }
+      });
 }
 
-Shard shard(const Options& o) {
-  if (!o.given("shard")) return Shard{};
-  try {
-    return parse_shard(o.text("shard"));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-}
-
-nlohmann::json shard_context(const Options& o, long long units,
+nlohmann::json shard_context(const Options& o, const Shard& shard, long long units,
                              const std::vector<long long>& row_units) {
   if (!o.given("shard")) return nullptr;
-  return shard_block(shard(o), units, row_units);
+  return shard_block(shard, units, row_units);
 }
 
 }  // namespace verifybench::cli

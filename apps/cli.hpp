@@ -16,38 +16,45 @@
 
 namespace verifybench::cli {
 
-/// --solvers, the common solver options, every family's options (one help group each), success
-/// criteria, --seed, --out, --quiet.
-struct SolverOptionDefaults {
-  SolverParams params;  ///< the defaults --help shows and the options start from
+/// What every solving command sets: --solvers, the common solver options, the accept rule, every
+/// family's options (one help group each), the success criteria, --seed, --out, --quiet. The
+/// values a command starts from are its defaults (--help shows them); add_solver_options binds the
+/// options to these fields, check_solver_options validates them once the line is parsed.
+struct SolverOptions {
+  std::vector<std::string> solvers{"clique", "ransac"};
+  SolverParams params;
+  AcceptParams accept;
+  SuccessCriteria criteria;
+  std::string out;
+  bool quiet = false;
   std::string out_value = "FILE.json";
   std::string out_help = "report path (required; written atomically; - for stdout)";
-  AcceptParams accept;  ///< the accept rule's options' defaults, likewise
 };
-void add_solver_options(Options& o, const SolverOptionDefaults& defaults = {});
-/// The rows (solvers/params.hpp) read onto `defaults` (the same as add_solver_options'), --seed.
-SolverParams solver_params(const Options& o, const SolverParams& defaults = {});
-/// The accept rule's rows (acceptance/accept_params.hpp) read onto `defaults`, validated.
-AcceptParams accept_params(const Options& o, const AcceptParams& defaults = {});
-SuccessCriteria criteria(const Options& o);
-/// --solvers, each name checked against the registry (UnknownSolver lists the known ones).
-std::vector<std::string> solver_names(const Options& o);
-/// --out, checked before any work (check_report_path): a UsageError when it could not be written;
-/// "-" is stdout (the report goes there, progress and summaries stay on stderr).
-std::string report_path(const Options& o);
+void add_solver_options(Options& o, SolverOptions& s);
+/// Every name against the registry (UnknownSolver lists the known ones), the solver parameters and
+/// the accept rule validated (UsageError naming the key and value).
+void check_solver_options(SolverOptions& s);
+/// --out (required), checked before any work (check_report_path): a UsageError when it could not
+/// be written; "-" is stdout (the report goes there, progress and summaries stay on stderr).
+std::string report_path(const Options& o, const std::string& out);
 /// The parameters block of a report: common fields, the accept rule's, every family field, the
 /// success criteria.
 nlohmann::json params_json(const SolverParams& p, const AcceptParams& a, const SuccessCriteria& c);
-/// --prior-rot-deg / --prior-trans, and their values: both > 0 or both 0; radians and metres.
-void add_prior_options(Options& o, const std::string& what);
-std::pair<double, double> prior_sigmas(const Options& o);
 
-/// --shard I/N: run only the I-th of N slices of the work (`verifybench merge` joins them).
-void add_shard_option(Options& o);
-/// The slice asked for (the whole work without --shard); a UsageError on a malformed value.
-Shard shard(const Options& o);
+/// --prior-rot-deg / --prior-trans: a pose prior drawn around the truth.
+struct PriorOptions {
+  double rot_deg = 0.0;
+  double trans = 0.0;
+};
+void add_prior_options(Options& o, const std::string& what, PriorOptions& p);
+/// Both > 0 or both 0 (UsageError otherwise); radians and metres.
+std::pair<double, double> prior_sigmas(const PriorOptions& p);
+
+/// --shard I/N: run only the I-th of N slices of the work (`verifybench merge` joins them); a
+/// UsageError on a malformed value; the whole work without --shard.
+void add_shard_option(Options& o, Shard& shard);
 /// The report's context.shard block when --shard was given, else null.
-nlohmann::json shard_context(const Options& o, long long units,
+nlohmann::json shard_context(const Options& o, const Shard& shard, long long units,
                              const std::vector<long long>& row_units);
 
 /// One summary line per aggregate of `rows` on stderr.

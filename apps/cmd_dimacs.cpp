@@ -13,7 +13,6 @@
 namespace verifybench {
 
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
-  Options o;
   // The solvers' rows of the time budget, threads and graph cap (solvers/params.cpp): one search
   // a graph is one "pair".
   std::vector<ParamField> budget_rows;
@@ -22,40 +21,40 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
       budget_rows.push_back(f);
     }
   }
-  o.allow_positional("FILE.clq")
-      .add("algorithms", "A,B", kDefaultCliqueAlgorithm,
-           "clique algorithms (see `verifybench list`)");
-  cli::add_rows(o, budget_rows, SolverParams{});
-  o.add("seed", "S", "1", "seed of the randomised algorithms (bbmcx-ls; recorded in the report)")
-      .add("out", "FILE.json", "", "report path (required; written atomically; - for stdout)")
-      .add("quiet", "", "", "no progress lines");
-  cli::add_shard_option(o);
+  std::vector<std::string> files, names{kDefaultCliqueAlgorithm};
+  SolverParams solver;
+  CliqueSearchParams params;
+  std::string out;
+  bool quiet = false;
+  Shard shard;  // one unit per file
+  Options o;
+  o.allow_positional("FILE.clq", files)
+      .list("algorithms", names, "A,B", "clique algorithms (see `verifybench list`)");
+  cli::add_rows(o, budget_rows, solver);
+  o.seed("seed", params.seed, "seed of the randomised algorithms (bbmcx-ls; recorded in the report)")
+      .text("out", out, "FILE.json", "report path (required; written atomically; - for stdout)")
+      .flag("quiet", quiet, "no progress lines");
+  cli::add_shard_option(o, shard);
   if (o.parse_or_help(
           args,
           "usage: verifybench dimacs FILE.clq... [options] --out FILE.json\n"
           "Known clique numbers are taken from MANIFEST.tsv beside each file when present.\n"))
     return 0;
-  if (o.positional().empty()) throw UsageError("no DIMACS file given");
-  const auto names = o.list("algorithms");
+  if (files.empty()) throw UsageError("no DIMACS file given");
   for (const auto& n : names) CliqueAlgorithms::get(n);  // throws with the known names
-  SolverParams solver;
-  cli::read_rows(o, budget_rows, solver);
-  CliqueSearchParams params;
   params.time_limit_s = solver.time_limit_s;
   params.threads = solver.threads;
-  params.seed = o.seed("seed");
   const std::size_t max_bytes = solver.max_graph_bytes;
-  const Shard shard = cli::shard(o);  // one unit per file
-  const long long units = static_cast<long long>(o.positional().size());
-  const std::string out = cli::report_path(o);
+  const long long units = static_cast<long long>(files.size());
+  out = cli::report_path(o, out);
 
   std::vector<CliqueRecord> rows;
   std::vector<long long> row_units;
   Progress progress("dimacs", shard.owned(units) * static_cast<long long>(names.size()),
-                    !o.flag("quiet"));
+                    !quiet);
   for (long long unit = 0; unit < units; ++unit) {
     if (!shard.owns(unit)) continue;
-    const std::string& file = o.positional()[static_cast<std::size_t>(unit)];
+    const std::string& file = files[static_cast<std::size_t>(unit)];
     const BitGraph g = read_dimacs(file, max_bytes);
     const std::filesystem::path path(file);
     std::optional<int> known;
@@ -82,7 +81,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
   return cli::finish(
       out, parameters, rows, argv, params.seed,
       [](const CliqueRecord& r) { return r.algorithm + " on " + r.graph + ": " + r.message; },
-      cli::shard_context(o, units, row_units));
+      cli::shard_context(o, shard, units, row_units));
 }
 
 }  // namespace verifybench

@@ -13,26 +13,27 @@ namespace verifybench {
 
 #ifdef VERIFYBENCH_HAVE_FRONTEND
 int cmd_extract(const std::vector<std::string>& args) {
+  ExtractParams p;
+  std::string source, target, gt_file, out;
   Options o;
   o.group("scans")
-      .add("source", "CLOUD", "", "source scan: KITTI .bin, .pcd or .ply (required)")
-      .add("target", "CLOUD", "", "target scan (required)")
-      .add("gt", "FILE", "", "T_target_source, 12 or 16 numbers row-major: labels the matches")
-      .add("label-threshold", "M", "1", "label a match inlier when ||T m - q|| is under this")
-      .add("seed", "S", "1", "seed of the --max-matches draw")
-      .add("out", "DIR", "", "dump folder to create (required; must not exist)");
+      .text("source", source, "CLOUD", "source scan: KITTI .bin, .pcd or .ply (required)")
+      .text("target", target, "CLOUD", "target scan (required)")
+      .text("gt", gt_file, "FILE",
+            "T_target_source, 12 or 16 numbers row-major: labels the matches")
+      .real("label-threshold", p.label_threshold, "M",
+            "label a match inlier when ||T m - q|| is under this", 1e-9, 1e9)
+      .seed("seed", p.seed, "seed of the --max-matches draw")
+      .text("out", out, "DIR", "dump folder to create (required; must not exist)");
   o.group("front end (the same options as `verifybench loop`)");
-  ExtractParams p;
   cli::add_rows(o, frontend_param_rows(), p);
   if (o.parse_or_help(args,
                       "usage: verifybench extract --source CLOUD --target CLOUD [--gt FILE] "
                       "[--pipeline 3d|2d|fpfh] --out DIR\n"))
     return 0;
-  cli::read_rows(o, frontend_param_rows(), p);
-  p.seed = o.seed("seed");
-  p.label_threshold = o.real("label-threshold", 1e-9, 1e9);
-  const std::string source = o.required("source"), target = o.required("target");
-  const std::string out = o.required("out");
+  o.require("source");
+  o.require("target");
+  o.require("out");
   {  // refused before the work, as every command does (exit code 2)
     const std::filesystem::path target(out);
     const std::filesystem::path parent = target.has_parent_path() ? target.parent_path() : ".";
@@ -44,7 +45,7 @@ int cmd_extract(const std::vector<std::string>& args) {
     }
   }
   std::optional<std::string> gt;
-  if (o.given("gt")) gt = o.text("gt");
+  if (o.given("gt")) gt = gt_file;
   const Dump dump = extract(source, target, gt, p);
   write_dump(out, dump);
   const auto& c = dump.provenance["counts"];

@@ -118,18 +118,26 @@ std::string shortest(double v) {
 }
 
 int cmd_graph(const std::vector<std::string>& args, const std::vector<std::string>&) {
+  std::string dir, out;
+  double eps = SolverParams{}.eps;
+  long long max_graph_mb = 4096;
+  int threads = 1;
+  bool overwrite = false, quiet = false;
   Options o;
-  o.add("dump", "DIR", "",
-        "dump folder, as `run` reads it: dump.json + matches.tsv, or corr.txt (required)")
-      .add("eps", "M", shortest(SolverParams{}.eps),
-           "pair length tolerance of Eq. (1) [m], > 0 (the same option and default as `run`)")
-      .add("out", "G.clq", "",
-           "DIMACS file to write (required; written atomically; '-' = stdout); an existing file "
-           "is refused unless --overwrite")
-      .add("overwrite", "", "", "replace an existing --out file")
-      .add("max-graph-mb", "MB", "4096", "refuse graphs whose adjacency rows exceed this")
-      .add("threads", "T", "1", "threads building the graph (0 = all cores; same graph for any)")
-      .add("quiet", "", "", "no summary line on stderr");
+  o.text("dump", dir, "DIR",
+         "dump folder, as `run` reads it: dump.json + matches.tsv, or corr.txt (required)")
+      .real("eps", eps, "M",
+            "pair length tolerance of Eq. (1) [m], > 0 (the same option and default as `run`)",
+            1e-12, 1e12)
+      .text("out", out, "G.clq",
+            "DIMACS file to write (required; written atomically; '-' = stdout); an existing file "
+            "is refused unless --overwrite")
+      .flag("overwrite", overwrite, "replace an existing --out file")
+      .integer("max-graph-mb", max_graph_mb, "MB", "refuse graphs whose adjacency rows exceed this",
+               1, 1LL << 30)
+      .integer("threads", threads, "T",
+               "threads building the graph (0 = all cores; same graph for any)", 0, 1024)
+      .flag("quiet", quiet, "no summary line on stderr");
   if (o.parse_or_help(
           args,
           "usage: verifybench graph --dump DIR [--eps M] --out G.clq [--overwrite]\n"
@@ -142,17 +150,14 @@ int cmd_graph(const std::vector<std::string>& args, const std::vector<std::strin
           "dimacs` on this file). The dimension comes from the dump. `c` comment lines name the\n"
           "dump, eps, dim, n and m.\n"))
     return 0;
-  const std::string dir = o.required("dump");
-  const double eps = o.real("eps", 1e-12, 1e12);
-  const std::string out = o.required("out");
-  const std::size_t max_bytes = static_cast<std::size_t>(o.integer("max-graph-mb", 1, 1LL << 30))
-                                << 20;
-  const int threads = static_cast<int>(o.integer("threads", 0, 1024));
+  o.require("dump");
+  o.require("out");
+  const std::size_t max_bytes = static_cast<std::size_t>(max_graph_mb) << 20;
   const bool to_stdout = out == "-";
   if (!to_stdout) {
     std::error_code ec;
     const auto st = std::filesystem::symlink_status(out, ec);
-    if (std::filesystem::exists(st) && !o.flag("overwrite")) {
+    if (std::filesystem::exists(st) && !overwrite) {
       throw UsageError("--out: " + out + " exists (--overwrite replaces it)");
     }
     try {
@@ -192,7 +197,7 @@ int cmd_graph(const std::vector<std::string>& args, const std::vector<std::strin
     write_dimacs_atomic(out, graph, header);
     std::cout << out << "\n";
   }
-  if (!o.flag("quiet")) {
+  if (!quiet) {
     std::cerr << "graph: " << dir << " eps " << eps_text << ": n " << graph.size() << ", m "
               << m << ", density "
               << (graph.size() > 1 ? 2.0 * static_cast<double>(m) /

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <cstring>
 #include <fcntl.h>
@@ -41,62 +42,83 @@ SolverParams loop_solver_defaults() {
   return p;
 }
 
-void add_loop_options(Options& o) {
+/// The command line's own settings (the stages' settings are rows bound to LoopConfig).
+struct LoopLine {
+  std::string trajectory, trajectory_frame = "velodyne", calib, sequence, sequence_format,
+      poses_file, sensor, reference, relations, odometry_file;
+  long long first_frame = 0, last_frame = -1;
+  bool no_plots = false, overwrite = false;
+};
+
+void add_loop_options(Options& o, LoopLine& l, LoopConfig& c, cli::SolverOptions& s) {
   o.group("sequence")
-      .add("trajectory", "FILE", "",
-           "KITTI poses (one row-major 3x4 a line): scans are simulated along it; `block` (no "
-           "such file): a 220 m x 140 m block driven twice, the data-free demo")
-      .add("trajectory-frame", "F", "velodyne",
-           "--trajectory's frame: velodyne, or camera (KITTI odometry's poses.txt; needs --calib)")
-      .add("calib", "FILE", "", "KITTI calib.txt whose `Tr:` line maps Velodyne into camera")
-      .add("sequence", "DIR", "",
-           "a recorded sequence: a folder (or a CARMEN log) in one of the layouts of "
-           "--sequence-format")
-      .add("sequence-format", "F", "", "the layout: " + source_names() + " (default: detected)")
-      .add("poses-file", "FILE", "", "folder layout: its TUM or KITTI poses file")
-      .add("sensor", "NAME", "", "helipr: Ouster, Velodyne, Aeva or Avia (default: the one there)")
-      .add("reference", "FILE", "",
-           "ground truth when the sequence's own poses are not: a TUM or KITTI file (matched to "
-           "the scans by stamp, else by index), or for carmen a corrected log")
-      .add("relations", "FILE", "",
-           "reference relations (Kuemmerle et al. 2009: `t1 t2 x y z roll pitch yaw` a line, e.g. "
-           "radish2d's aces.relations): the report adds their relation error without and with "
-           "loops; needs a sequence that logs its odometry (carmen)")
-      .add("first-frame", "I", "0", "first frame of the excerpt")
-      .add("last-frame", "I", "-1", "last frame of the excerpt (-1 = the end)");
-  // Every stage's settings are rows declared beside the stage (core/param_rows.hpp): the options,
-  // their defaults and ranges here, and the report's parameters.loop below, come from them.
-  const LoopConfig defaults;
+      .text("trajectory", l.trajectory, "FILE",
+            "KITTI poses (one row-major 3x4 a line): scans are simulated along it; `block` (no "
+            "such file): a 220 m x 140 m block driven twice, the data-free demo")
+      .bind("trajectory-frame", "F", l.trajectory_frame,
+            "--trajectory's frame: velodyne, or camera (KITTI odometry's poses.txt; needs --calib)",
+            [&l](const std::string& v) {
+              if (v != "velodyne" && v != "camera") {
+                throw UsageError("--trajectory-frame: '" + v + "' is not velodyne or camera");
+              }
+              l.trajectory_frame = v;
+            })
+      .text("calib", l.calib, "FILE", "KITTI calib.txt whose `Tr:` line maps Velodyne into camera")
+      .text("sequence", l.sequence, "DIR",
+            "a recorded sequence: a folder (or a CARMEN log) in one of the layouts of "
+            "--sequence-format")
+      .text("sequence-format", l.sequence_format, "F",
+            "the layout: " + source_names() + " (default: detected)")
+      .text("poses-file", l.poses_file, "FILE", "folder layout: its TUM or KITTI poses file")
+      .text("sensor", l.sensor, "NAME",
+            "helipr: Ouster, Velodyne, Aeva or Avia (default: the one there)")
+      .text("reference", l.reference, "FILE",
+            "ground truth when the sequence's own poses are not: a TUM or KITTI file (matched to "
+            "the scans by stamp, else by index), or for carmen a corrected log")
+      .text("relations", l.relations, "FILE",
+            "reference relations (Kuemmerle et al. 2009: `t1 t2 x y z roll pitch yaw` a line, "
+            "e.g. radish2d's aces.relations): the report adds their relation error without and "
+            "with loops; needs a sequence that logs its odometry (carmen)")
+      .integer("first-frame", l.first_frame, "I", "first frame of the excerpt", 0,
+               std::numeric_limits<int>::max())
+      .integer("last-frame", l.last_frame, "I", "last frame of the excerpt (-1 = the end)", -1,
+               std::numeric_limits<int>::max());
+  // Every stage's settings are rows declared beside the stage (core/param_rows.hpp), bound here to
+  // the LoopConfig the run reads; the report's parameters.loop below comes from the same rows.
   o.group("simulated world and LiDAR (without --sequence)");
-  cli::add_rows(o, lidar_param_rows(), defaults.lidar);
-  cli::add_rows(o, world_param_rows(), defaults.world);
+  cli::add_rows(o, lidar_param_rows(), c.lidar);
+  cli::add_rows(o, world_param_rows(), c.world);
   o.group("odometry")
-      .add("odometry", "drift|gicp|poses|log", "drift",
-           "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to the "
-           "last --gicp-map-scans scans; poses: --odometry-file (e.g. KISS-ICP's output); log: "
-           "the recording's own (a CARMEN log's odometry)")
-      .add("odometry-file", "FILE", "",
-           "poses: a TUM or KITTI file, matched to the scans by stamp, else by index");
-  cli::add_rows(o, gicp_param_rows(), defaults.gicp);
-  cli::add_rows(o, drift_param_rows(), defaults.drift);
+      .bind("odometry", "drift|gicp|poses|log", c.odometry,
+            "drift: the drift model below on the true poses; gicp: PCL GICP of each scan to the "
+            "last --gicp-map-scans scans; poses: --odometry-file (e.g. KISS-ICP's output); log: "
+            "the recording's own (a CARMEN log's odometry)",
+            [&c](const std::string& v) {
+              if (v != "drift" && v != "gicp" && v != "poses" && v != "log") {
+                throw UsageError("--odometry: '" + v + "' is not drift, gicp, poses or log");
+              }
+              c.odometry = v;
+            })
+      .text("odometry-file", l.odometry_file, "FILE",
+            "poses: a TUM or KITTI file, matched to the scans by stamp, else by index");
+  cli::add_rows(o, gicp_param_rows(), c.gicp);
+  cli::add_rows(o, drift_param_rows(), c.drift);
   o.group("scans, maps, retrieval, ground truth, pose graph, dense check");
-  cli::add_rows(o, loop_param_rows(), defaults);
-  cli::add_rows(o, local_map_param_rows(), defaults.maps);
-  cli::add_rows(o, retrieval_param_rows(), defaults.retrieval);
-  cli::add_rows(o, dense_check_param_rows(), defaults.dense);
+  cli::add_rows(o, loop_param_rows(), c);
+  cli::add_rows(o, local_map_param_rows(), c.maps);
+  cli::add_rows(o, retrieval_param_rows(), c.retrieval);
+  cli::add_rows(o, dense_check_param_rows(), c.dense);
   o.group(
       "front end of each local map (the same options as `verifybench extract`; --max-hamming "
       "and --max-feature-distance also bound retrieval's votes)");
-  cli::add_rows(o, frontend_param_rows(), loop_extract_defaults());
-  cli::add_solver_options(o, {loop_solver_defaults(), "DIR",
-                              "report folder: loop.json, loop.md, trajectories/ (required; new or "
-                              "empty)"});
-  o.add("no-plots", "", "",
-        "do not draw the figures (DIR/loop_trajectory_<solver>.{png,pdf}, DIR/loop_pr.{png,pdf}; "
-        "drawn by reports/plot_loop.py on /usr/bin/python3 after the run)");
-  o.add("overwrite", "", "",
-        "--out may be an earlier run's folder: it is emptied once this run is done, before its "
-        "results are written");
+  cli::add_rows(o, frontend_param_rows(), c.extract);
+  cli::add_solver_options(o, s);
+  o.flag("no-plots", l.no_plots,
+         "do not draw the figures (DIR/loop_trajectory_<solver>.{png,pdf}, DIR/loop_pr.{png,pdf}; "
+         "drawn by reports/plot_loop.py on /usr/bin/python3 after the run)");
+  o.flag("overwrite", l.overwrite,
+         "--out may be an earlier run's folder: it is emptied once this run is done, before its "
+         "results are written");
 }
 
 /// A poses file's poses, one per scan: by nearest stamp (within 0.05 s) where the file has stamps
@@ -134,8 +156,10 @@ Trajectory frames_of(const StampedTrajectory& file, const std::vector<double>& s
   return out;
 }
 
-LoopConfig loop_config(const Options& o) {
-  LoopConfig c;
+/// The rest of the configuration, once the line is parsed into `l`, `c` and `s`: the sequence or
+/// the simulated trajectory, the reference, the odometry poses, the excerpt; then validated.
+void loop_config(const Options& o, const LoopLine& l, LoopConfig& c, cli::SolverOptions& s) {
+  cli::check_solver_options(s);
   const bool has_trajectory = o.given("trajectory"), has_sequence = o.given("sequence");
   if (has_trajectory == has_sequence) {
     throw UsageError("give one of --trajectory FILE (simulated scans) or --sequence DIR");
@@ -143,12 +167,12 @@ LoopConfig loop_config(const Options& o) {
   Trajectory poses, odometry_poses;
   std::vector<double> stamps;
   if (has_sequence) {
-    c.sequence_dir = o.text("sequence");
+    c.sequence_dir = l.sequence;
     SourceOptions so;
-    so.poses_file = o.text("poses-file");
-    so.sensor = o.text("sensor");
-    const std::string format = o.text("sequence-format");
-    so.reference = o.text("reference");  // carmen: a corrected log; the others ignore it
+    so.poses_file = l.poses_file;
+    so.sensor = l.sensor;
+    const std::string& format = l.sequence_format;
+    so.reference = l.reference;  // carmen: a corrected log; the others ignore it
     try {
       c.source = open_sequence(c.sequence_dir, format, so);
     } catch (const std::invalid_argument& e) {
@@ -157,8 +181,8 @@ LoopConfig loop_config(const Options& o) {
     const SequenceInfo& info = c.source->info();
     stamps = info.stamps;
     if (o.given("reference") && info.format != "carmen") {
-      poses = frames_of(read_poses_file(o.text("reference")), stamps, o.text("reference"));
-      c.reference = o.text("reference");
+      poses = frames_of(read_poses_file(l.reference), stamps, l.reference);
+      c.reference = l.reference;
     } else if (!info.poses.empty()) {
       poses = info.poses;
       c.reference = info.poses_file;
@@ -166,7 +190,7 @@ LoopConfig loop_config(const Options& o) {
       throw UsageError("--sequence: " + c.sequence_dir + " (" + info.format +
                        ") carries no reference poses: give --reference FILE");
     }
-    if (o.text("odometry") == "log") {
+    if (c.odometry == "log") {
       if (info.odometry.empty()) {
         throw UsageError("--odometry log: " + c.sequence_dir + " (" + info.format +
                          ") logs no odometry");
@@ -178,7 +202,7 @@ LoopConfig loop_config(const Options& o) {
         throw UsageError("--relations: " + c.sequence_dir + " (" + info.format +
                          ") logs no odometry to carry the estimate between frames");
       }
-      c.relations_file = o.text("relations");
+      c.relations_file = l.relations;
       c.relations = read_relations(c.relations_file);
       c.odometry_stream_stamps = info.odometry_stream_stamps;
       c.odometry_stream = info.odometry_stream;
@@ -189,36 +213,40 @@ LoopConfig loop_config(const Options& o) {
       throw UsageError(
           "--reference, --sequence-format, --poses-file and --relations go with --sequence");
     }
-    const std::string trajectory = o.text("trajectory");
+    const std::string trajectory = l.trajectory;
     poses = trajectory == "block" && !std::filesystem::exists(trajectory)
                 ? block_laps(220.0, 140.0, 2)  // every map of the second lap revisits the first
                 : read_kitti_poses(trajectory);
-    std::string frame = o.text("trajectory-frame");
-    if (frame == "camera") {
+    if (l.trajectory_frame == "camera") {
       if (!o.given("calib")) throw UsageError("--trajectory-frame camera needs --calib FILE");
-      poses = camera_to_velodyne(poses, read_kitti_calib_tr(o.text("calib")));
-    } else if (frame != "velodyne") {
-      throw UsageError("--trajectory-frame: '" + frame + "' is not velodyne or camera");
+      poses = camera_to_velodyne(poses, read_kitti_calib_tr(l.calib));
     }
-    c.reference = o.text("trajectory");
-    if (o.text("odometry") == "log") throw UsageError("--odometry log needs a --sequence");
+    c.reference = l.trajectory;
+    if (c.odometry == "log") throw UsageError("--odometry log needs a --sequence");
   }
-  if (o.text("odometry") == "poses") {
+  if (c.odometry == "poses") {
     if (!o.given("odometry-file")) throw UsageError("--odometry poses needs --odometry-file FILE");
     odometry_poses =
-        frames_of(read_poses_file(o.text("odometry-file")), stamps, o.text("odometry-file"));
+        frames_of(read_poses_file(l.odometry_file), stamps, l.odometry_file);
   } else if (o.given("odometry-file")) {
     throw UsageError("--odometry-file goes with --odometry poses");
   }
   if (odometry_poses.size() != 0 && odometry_poses.size() != poses.size()) {
-    throw UsageError("--odometry " + o.text("odometry") + ": " +
+    throw UsageError("--odometry " + c.odometry + ": " +
                      std::to_string(odometry_poses.size()) + " poses for " +
                      std::to_string(poses.size()) + " scans");
   }
   const long long n = static_cast<long long>(poses.size());
-  const long long first = o.integer("first-frame", 0, n - 1);
-  long long last = o.integer("last-frame", -1, n - 1);
-  if (last < 0) last = n - 1;
+  const long long first = l.first_frame;
+  const long long last = l.last_frame < 0 ? n - 1 : l.last_frame;
+  if (first > n - 1) {
+    throw UsageError("--first-frame: '" + std::to_string(first) + "' is outside [0, " +
+                     std::to_string(n - 1) + "]");
+  }
+  if (last > n - 1) {
+    throw UsageError("--last-frame: '" + std::to_string(last) + "' is outside [-1, " +
+                     std::to_string(n - 1) + "]");
+  }
   if (last <= first) {
     throw UsageError("--last-frame " + std::to_string(last) + " is not after --first-frame " +
                      std::to_string(first));
@@ -229,23 +257,9 @@ LoopConfig loop_config(const Options& o) {
   }
   if (!stamps.empty()) c.stamps.assign(stamps.begin() + first, stamps.begin() + last + 1);
   c.first_frame = static_cast<int>(first);
-  cli::read_rows(o, loop_param_rows(), c);
-  cli::read_rows(o, frontend_param_rows(), c.extract);
-  cli::read_rows(o, lidar_param_rows(), c.lidar);
-  cli::read_rows(o, world_param_rows(), c.world);
-  c.odometry = o.text("odometry");
-  if (c.odometry != "drift" && c.odometry != "gicp" && c.odometry != "poses" &&
-      c.odometry != "log") {
-    throw UsageError("--odometry: '" + c.odometry + "' is not drift, gicp, poses or log");
-  }
-  cli::read_rows(o, gicp_param_rows(), c.gicp);
-  cli::read_rows(o, drift_param_rows(), c.drift);
-  cli::read_rows(o, local_map_param_rows(), c.maps);
-  cli::read_rows(o, retrieval_param_rows(), c.retrieval);
-  cli::read_rows(o, dense_check_param_rows(), c.dense);
-  c.solvers = cli::solver_names(o);
-  c.params = cli::solver_params(o, loop_solver_defaults());
-  c.accept = cli::accept_params(o);
+  c.solvers = s.solvers;
+  c.params = s.params;
+  c.accept = s.accept;
   c.seed = c.params.seed;
   c.threads = c.params.threads;
   c.params.threads = 1;  // maps are built in parallel; each solve on one thread
@@ -255,20 +269,20 @@ LoopConfig loop_config(const Options& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  return c;
 }
 
-nlohmann::json loop_parameters(const Options& o, const LoopConfig& c) {
-  nlohmann::json p = cli::params_json(c.params, c.accept, cli::criteria(o));
+nlohmann::json loop_parameters(const LoopLine& l, const LoopConfig& c,
+                               const SuccessCriteria& criteria) {
+  nlohmann::json p = cli::params_json(c.params, c.accept, criteria);
   p["threads"] = c.threads;
-  p["loop"] = {{"trajectory", o.text("trajectory")},
+  p["loop"] = {{"trajectory", l.trajectory},
                {"sequence", c.sequence_dir},
                {"sequence_format", c.source ? c.source->info().format : ""},
                {"sequence_note", c.source ? c.source->info().note : ""},
                {"reference", c.reference},
                {"relations", c.relations_file},
-               {"odometry_file", o.text("odometry-file")},
-               {"trajectory_frame", o.text("trajectory-frame")},
+               {"odometry_file", l.odometry_file},
+               {"trajectory_frame", l.trajectory_frame},
                {"first_frame", c.first_frame},
                {"frames", c.truth.size()},
                {"frontend", cli::rows_json(frontend_param_rows(), c.extract)},
@@ -350,20 +364,27 @@ void draw_loop_figures(const std::string& dir, bool quiet) {
 }  // namespace
 
 int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  LoopLine line;
+  LoopConfig config;
+  cli::SolverOptions s;
+  s.params = loop_solver_defaults();
+  s.out_value = "DIR";
+  s.out_help = "report folder: loop.json, loop.md, trajectories/ (required; new or empty)";
   Options o;
-  add_loop_options(o);
+  add_loop_options(o, line, config, s);
   if (o.parse_or_help(args,
                       "usage: verifybench loop (--trajectory FILE | --sequence DIR) "
                       "[options] --out DIR\n"))
     return 0;
-  const LoopConfig config = loop_config(o);
-  const std::string dir = o.required("out");
+  loop_config(o, line, config, s);
+  o.require("out");
+  const std::string dir = s.out;
   try {
-    check_loop_dir(dir, o.flag("overwrite"));
+    check_loop_dir(dir, line.overwrite);
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("--out: ") + e.what());
   }
-  const bool quiet = o.flag("quiet");
+  const bool quiet = s.quiet;
   std::unique_ptr<Progress> bar;
   std::string stage;
   // One progress line per stage (scans and maps, verification, ...), each with its own ETA.
@@ -377,12 +398,12 @@ int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string
   });
   bar.reset();
   const nlohmann::json report =
-      loop_report(config, run, make_context(argv, config.seed), loop_parameters(o, config));
+      loop_report(config, run, make_context(argv, config.seed), loop_parameters(line, config, s.criteria));
   const std::string md = loop_markdown(config, run);
-  if (o.flag("overwrite")) clear_loop_dir(dir);
+  if (line.overwrite) clear_loop_dir(dir);
   write_loop_report(dir, report, md);
   write_loop_trajectories(dir, config, run);
-  if (!o.flag("no-plots")) draw_loop_figures(dir, quiet);
+  if (!line.no_plots) draw_loop_figures(dir, quiet);
   if (!quiet) std::cerr << md;
   std::cout << dir << "/loop.json\n";
   for (const ClosureRow& r : run.rows) {

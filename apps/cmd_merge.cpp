@@ -36,11 +36,13 @@ nlohmann::json read_report(const std::string& path) {
 }  // namespace
 
 int cmd_merge(const std::vector<std::string>& args, const std::vector<std::string>&) {
+  std::vector<std::string> files;
+  std::string out;
+  bool quiet = false;
   Options o;
-  o.allow_positional("SHARD.json")
-      .add("out", "FILE.json", "",
-           "merged report path (required; written atomically; - for stdout)")
-      .add("quiet", "", "", "no summary lines");
+  o.allow_positional("SHARD.json", files)
+      .text("out", out, "FILE.json", "merged report path (required; written atomically; - for stdout)")
+      .flag("quiet", quiet, "no summary lines");
   if (o.parse_or_help(
           args,
           "usage: verifybench merge SHARD.json... --out FILE.json\n"
@@ -48,18 +50,18 @@ int cmd_merge(const std::vector<std::string>& args, const std::vector<std::strin
           "one command line, one build) into the unsharded report: rows in the unsharded\n"
           "order, aggregates and decisions recomputed.\n"))
     return 0;
-  if (o.positional().empty()) throw UsageError("no shard report given");
-  const std::string out = cli::report_path(o);
+  if (files.empty()) throw UsageError("no shard report given");
+  out = cli::report_path(o, out);
   std::vector<nlohmann::json> docs;
-  for (const auto& path : o.positional()) docs.push_back(read_report(path));
+  for (const auto& path : files) docs.push_back(read_report(path));
   nlohmann::json merged;
   try {
-    merged = merge_reports(o.positional(), docs);
+    merged = merge_reports(files, docs);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
   cli::write_report(out, merged);
-  if (!o.flag("quiet")) {
+  if (!quiet) {
     std::cerr << "merge: " << docs.size() << " shards, " << merged["results"].size() << " rows\n";
   }
   return 0;

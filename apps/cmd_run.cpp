@@ -12,37 +12,42 @@
 namespace verifybench {
 
 int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
+  std::string dir, expected_text = "auto";
+  int trials = 1;
+  cli::SolverOptions opts;
+  cli::PriorOptions prior_options;
+  Shard shard;
   Options o;
-  o.add("dump", "DIR", "",
-        "dump folder: dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt] (required)");
-  cli::add_solver_options(o);
+  o.text("dump", dir, "DIR",
+         "dump folder: dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt] (required)");
+  cli::add_solver_options(o, opts);
   o.group("dump")
-      .add("trials", "K", "1", "repeat each solver K times (timing statistics)")
-      .add("expected", "E", "auto",
-           "the expected decision: positive, negative, or auto (MANIFEST.tsv beside the dump; "
-           "else, where the dump has labels, positive when any label is a true inlier, negative "
-           "when none "
-           "is; else unknown)");
-  cli::add_prior_options(o, "the set (it needs a ground truth)");
-  cli::add_shard_option(o);
+      .integer("trials", trials, "K", "repeat each solver K times (timing statistics)", 1, 1000000)
+      .bind("expected", "E", expected_text,
+            "the expected decision: positive, negative, or auto (MANIFEST.tsv beside the dump; "
+            "else, where the dump has labels, positive when any label is a true inlier, negative "
+            "when none is; else unknown)",
+            [&expected_text](const std::string& v) {
+              if (v != "auto" && v != "positive" && v != "negative") {
+                throw UsageError("--expected: '" + v + "' is not positive, negative or auto");
+              }
+              expected_text = v;
+            });
+  cli::add_prior_options(o, "the set (it needs a ground truth)", prior_options);
+  cli::add_shard_option(o, shard);
   if (o.parse_or_help(args, "usage: verifybench run --dump DIR [options] --out FILE.json\n"))
     return 0;
-  const std::string dir = o.required("dump");
-  const auto names = cli::solver_names(o);
-  const SolverParams params = cli::solver_params(o);
-  const AcceptParams accept = cli::accept_params(o);
-  const SuccessCriteria crit = cli::criteria(o);
-  const int trials = static_cast<int>(o.integer("trials", 1, 1000000));
-  const Shard shard = cli::shard(o);
+  o.require("dump");
+  cli::check_solver_options(opts);
+  const auto& names = opts.solvers;
+  const SolverParams& params = opts.params;
+  const AcceptParams& accept = opts.accept;
+  const SuccessCriteria& crit = opts.criteria;
   const long long units = static_cast<long long>(names.size()) * trials;  // (solver, trial)
-  const std::string out = cli::report_path(o);
+  const std::string out = cli::report_path(o, opts.out);
   // Named, not a structured binding: lambdas capture bindings only from C++20 (clang refuses).
-  const auto prior = cli::prior_sigmas(o);
+  const auto prior = cli::prior_sigmas(prior_options);
   const double prior_rot = prior.first, prior_trans = prior.second;
-  const std::string expected_text = o.text("expected");
-  if (expected_text != "auto" && expected_text != "positive" && expected_text != "negative") {
-    throw UsageError("--expected: '" + expected_text + "' is not positive, negative or auto");
-  }
   Dump dump = read_dump(dir);
   std::optional<bool> expected;
   if (expected_text != "auto") {
@@ -66,13 +71,13 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
           }
           add_pose_prior(s, prior_rot, prior_trans, params.seed);
         }
-        Progress progress("run", shard.owned(units), !o.flag("quiet"));
+        Progress progress("run", shard.owned(units), !opts.quiet);
         return run_on_set(
             names, s, dir, trials, params.seed, params, accept, crit, [&] { progress.advance(); },
             shard);
       },
       dump.set);
-  if (!o.flag("quiet")) cli::print_point(rows);
+  if (!opts.quiet) cli::print_point(rows);
   nlohmann::json parameters = cli::params_json(params, accept, crit);
   parameters["run"] = {
       {"dump", dir},
@@ -93,7 +98,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
     row_units.push_back(s * trials + r.trial);
   }
   return cli::finish(out, parameters, rows, argv, params.seed, cli::describe_error,
-                     cli::shard_context(o, units, row_units));
+                     cli::shard_context(o, shard, units, row_units));
 }
 
 }  // namespace verifybench

@@ -32,47 +32,47 @@ void check_generator(const std::string& kind, const std::vector<int>& dims) {
 }  // namespace
 
 int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
-  Options o;
-  cli::add_solver_options(o);
-  o.group("synthetic sets")
-      .add("dim", "D", "3", "dimension: 2, 3 or 2,3")
-      .add("n", "N", "500", "correspondences per set")
-      .add("outliers", "RANGE", "0.5:0.99:0.05",
-           "outlier ratios: start:stop:step (stop included) or a,b,c")
-      .add("noise", "SIGMA", "0.01", "Gaussian noise per axis on inlier targets [m]")
-      .add("extent", "M", "10", "side of the cube (square) the points are drawn in [m]")
-      .add("trials", "K", "20", "sets per (dim, outlier ratio) point")
-      .add("negatives", "", "",
-           "each trial also draws a negative twin (the sides share no motion): the report scores "
-           "accept decisions (TP, FP, TN, FN, precision, recall)")
-      .add("generator", "KIND", "uniform", "synthetic generator (see `verifybench list`)");
-  cli::add_rows(o, synthetic_shape_rows(), SyntheticParams{});
-  cli::add_prior_options(o, "each set");
-  cli::add_shard_option(o);
-  if (o.parse_or_help(args, "usage: verifybench sweep [options] --out FILE.json\n")) return 0;
   SweepConfig c;
-  c.solvers = cli::solver_names(o);
-  c.dims.clear();
-  for (const auto& d : o.list("dim")) {
-    if (d != "2" && d != "3") throw UsageError("--dim: '" + d + "' is not 2 or 3");
-    c.dims.push_back(d == "2" ? 2 : 3);
-  }
-  c.n = static_cast<int>(o.integer("n", 1, 100000000));
-  c.outlier_ratios = parse_range("--outliers", o.text("outliers"), 0.0, 1.0);
-  c.noise = o.real("noise", 0.0, 1e9);
-  c.extent = o.real("extent", 1e-9, 1e9);
-  c.trials = static_cast<int>(o.integer("trials", 1, 1000000));
-  c.negatives = o.flag("negatives");
-  c.shape.kind = o.text("generator");
-  cli::read_rows(o, synthetic_shape_rows(), c.shape);
+  const std::string outliers = "0.5:0.99:0.05";
+  c.outlier_ratios = parse_range("--outliers", outliers, 0.0, 1.0);
+  cli::SolverOptions s;
+  cli::PriorOptions prior;
+  Options o;
+  cli::add_solver_options(o, s);
+  o.group("synthetic sets")
+      .bind("dim", "D", "3", "dimension: 2, 3 or 2,3",
+            [&c](const std::string& v) {
+              c.dims.clear();
+              for (const auto& d : Options::list_value("dim", v)) {
+                if (d != "2" && d != "3") throw UsageError("--dim: '" + d + "' is not 2 or 3");
+                c.dims.push_back(d == "2" ? 2 : 3);
+              }
+            })
+      .integer("n", c.n, "N", "correspondences per set", 1, 100000000)
+      .bind("outliers", "RANGE", outliers,
+            "outlier ratios: start:stop:step (stop included) or a,b,c",
+            [&c](const std::string& v) { c.outlier_ratios = parse_range("--outliers", v, 0.0, 1.0); })
+      .real("noise", c.noise, "SIGMA", "Gaussian noise per axis on inlier targets [m]", 0.0, 1e9)
+      .real("extent", c.extent, "M", "side of the cube (square) the points are drawn in [m]", 1e-9,
+            1e9)
+      .integer("trials", c.trials, "K", "sets per (dim, outlier ratio) point", 1, 1000000)
+      .flag("negatives", c.negatives,
+            "each trial also draws a negative twin (the sides share no motion): the report scores "
+            "accept decisions (TP, FP, TN, FN, precision, recall)")
+      .text("generator", c.shape.kind, "KIND", "synthetic generator (see `verifybench list`)");
+  cli::add_rows(o, synthetic_shape_rows(), c.shape);
+  cli::add_prior_options(o, "each set", prior);
+  cli::add_shard_option(o, c.shard);
+  if (o.parse_or_help(args, "usage: verifybench sweep [options] --out FILE.json\n")) return 0;
+  cli::check_solver_options(s);
   check_generator(c.shape.kind, c.dims);
-  std::tie(c.prior_sigma_rot, c.prior_sigma_trans) = cli::prior_sigmas(o);
-  c.params = cli::solver_params(o);
-  c.accept = cli::accept_params(o);
+  std::tie(c.prior_sigma_rot, c.prior_sigma_trans) = cli::prior_sigmas(prior);
+  c.solvers = s.solvers;
+  c.params = s.params;
+  c.accept = s.accept;
   c.seed = c.params.seed;
-  c.criteria = cli::criteria(o);
-  c.shard = cli::shard(o);
-  const std::string out = cli::report_path(o);
+  c.criteria = s.criteria;
+  const std::string out = cli::report_path(o, s.out);
 
   nlohmann::json parameters = cli::params_json(c.params, c.accept, c.criteria);
   parameters["sweep"] = {{"generator", c.shape.kind},
@@ -88,8 +88,8 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
                          {"negatives", c.negatives},
                          {"solvers", c.solvers}};
   SweepProgress point_done;
-  if (!o.flag("quiet")) point_done = cli::print_point;
-  Progress progress("sweep", c.shard.owned(c.units()), !o.flag("quiet"));
+  if (!s.quiet) point_done = cli::print_point;
+  Progress progress("sweep", c.shard.owned(c.units()), !s.quiet);
   const auto rows = run_sweep(c, point_done, [&] { progress.advance(); });
   // Each row's unit (SweepConfig::shard): its dim, ratio and trial, as the sweep numbered them.
   std::vector<long long> row_units;
@@ -102,7 +102,7 @@ int cmd_sweep(const std::vector<std::string>& args, const std::vector<std::strin
                         r.trial);
   }
   return cli::finish(out, parameters, rows, argv, c.seed, cli::describe_error,
-                     cli::shard_context(o, c.units(), row_units));
+                     cli::shard_context(o, c.shard, c.units(), row_units));
 }
 
 }  // namespace verifybench

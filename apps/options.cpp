@@ -24,11 +24,48 @@ long long parse_integer(const std::string& what, const std::string& text) {
   return *v;
 }
 
-Options& Options::add(const std::string& name, const std::string& value_name,
-                      const std::string& fallback, const std::string& help) {
+Options& Options::bind(const std::string& name, const std::string& value_name,
+                       const std::string& shown, const std::string& help, Set set,
+                       std::function<void()> absent) {
   order_.push_back(name);
-  specs_[name] = {value_name, fallback, help};
+  specs_[name] = {value_name, shown, help, std::move(set), nullptr, std::move(absent)};
   return *this;
+}
+
+Options& Options::flag(const std::string& name, const std::string& help,
+                       std::function<void()> on) {
+  order_.push_back(name);
+  specs_[name] = {"", "", help, nullptr, std::move(on), nullptr};
+  return *this;
+}
+
+Options& Options::real(const std::string& name, double& field, const std::string& value_name,
+                       const std::string& help, double min, double max) {
+  return bind(name, value_name, shown_number(field), help,
+              [&field, name, min, max](const std::string& v) {
+                field = real_value(name, v, min, max);
+              });
+}
+
+Options& Options::seed(const std::string& name, std::uint64_t& field, const std::string& help) {
+  return bind(name, "S", std::to_string(field), help, [&field, name](const std::string& v) {
+    const auto value = parse_unsigned_token(v);
+    if (!value) throw UsageError("--" + name + ": '" + v + "' is not an unsigned 64-bit integer");
+    field = *value;
+  });
+}
+
+Options& Options::text(const std::string& name, std::string& field, const std::string& value_name,
+                       const std::string& help) {
+  return bind(name, value_name, field, help, [&field](const std::string& v) { field = v; });
+}
+
+Options& Options::list(const std::string& name, std::vector<std::string>& field,
+                       const std::string& value_name, const std::string& help) {
+  std::string shown;
+  for (const auto& item : field) shown += (shown.empty() ? "" : ",") + item;
+  return bind(name, value_name, shown, help,
+              [&field, name](const std::string& v) { field = list_value(name, v); });
 }
 
 void Options::parse(const std::vector<std::string>& given_args) {
@@ -55,25 +92,24 @@ void Options::parse(const std::vector<std::string>& given_args) {
                        (near.empty() ? "" : "did you mean --" + near + "?; ") + "see --help)");
     }
     if (++seen[name] > 1) throw UsageError("option --" + name + " given twice");
-    if (spec->second.value_name.empty() && arg.find('=') != std::string::npos) {
+    if (!spec->second.set && arg.find('=') != std::string::npos) {
       throw UsageError("option --" + name + " takes no value");
     }
   }
+  // Each option's setter is CLI11's callback: it runs once parsing is done, in declaration order.
   CLI::App app;
   app.set_help_flag();  // --help is ours: it prints the grouped help below
   app.add_flag("-h,--help", help_);
-  std::map<std::string, std::string> given;
-  std::map<std::string, bool> flags;
   for (const auto& name : order_) {
     if (name[0] == '\n') continue;
     const Spec& spec = specs_.at(name);
-    if (spec.value_name.empty()) {
-      app.add_flag("--" + name, flags[name]);
+    if (spec.set) {
+      app.add_option_function<std::string>("--" + name, spec.set)->allow_extra_args(false);
     } else {
-      app.add_option("--" + name, given[name])->allow_extra_args(false);
+      app.add_flag_callback("--" + name, spec.on);
     }
   }
-  if (!positional_name_.empty()) app.add_option(positional_name_, positional_);
+  if (positional_) app.add_option(positional_name_, *positional_);
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
   try {
     app.parse(reversed);
@@ -87,11 +123,12 @@ void Options::parse(const std::vector<std::string>& given_args) {
   } catch (const CLI::ParseError& e) {
     throw UsageError(e.what());
   }
-  for (const auto& [name, on] : flags) {
-    if (on) values_[name] = "1";
-  }
-  for (const auto& [name, value] : given) {
-    if (app.count("--" + name) > 0) values_[name] = value;
+  for (const auto& [name, count] : seen) given_.insert(name);
+  if (help_) return;
+  for (const auto& name : order_) {
+    if (name[0] == '\n' || given(name)) continue;
+    const Spec& spec = specs_.at(name);
+    if (spec.absent) spec.absent();
   }
 }
 
@@ -113,68 +150,51 @@ std::string Options::help() const {
     std::string head =
         "  " + std::string(alias) + "--" + name + (s.value_name.empty() ? "" : " " + s.value_name);
     out << head << std::string(head.size() < 30 ? 30 - head.size() : 1, ' ') << s.help;
-    if (!s.fallback.empty()) out << " (default " << s.fallback << ")";
+    if (!s.shown.empty()) out << " (default " << s.shown << ")";
     out << "\n";
   }
   out << "  --help                      this text\n";
   return out.str();
 }
 
-bool Options::flag(const std::string& name) const { return values_.count(name) > 0; }
-
-std::string Options::text(const std::string& name) const {
-  const auto it = values_.find(name);
-  return it != values_.end() ? it->second : specs_.at(name).fallback;
+void Options::require(const std::string& name) const {
+  if (!given(name)) throw UsageError("option --" + name + " is required");
 }
 
-std::string Options::required(const std::string& name) const {
-  const std::string v = text(name);
-  if (v.empty()) throw UsageError("option --" + name + " is required");
-  return v;
-}
-
-void Options::bad(const std::string& name, const std::string& value, const std::string& why) const {
-  throw UsageError("--" + name + ": '" + value + "' " + why);
-}
-
-double Options::real(const std::string& name, double min, double max) const {
-  const std::string t = text(name);
-  const double v = parse_real("--" + name, t);
+double Options::real_value(const std::string& name, const std::string& text, double min,
+                           double max) {
+  const double v = parse_real("--" + name, text);
   if (v < min || v > max) {
     std::ostringstream range;
-    range << "is outside [" << min << ", " << max << "]";
-    bad(name, t, range.str());
+    range << "--" << name << ": '" << text << "' is outside [" << min << ", " << max << "]";
+    throw UsageError(range.str());
   }
   return v;
 }
 
-long long Options::integer(const std::string& name, long long min, long long max) const {
-  const std::string t = text(name);
-  const long long v = parse_integer("--" + name, t);
+long long Options::integer_value(const std::string& name, const std::string& text, long long min,
+                                 long long max) {
+  const long long v = parse_integer("--" + name, text);
   if (v < min || v > max) {
-    bad(name, t, "is outside [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    throw UsageError("--" + name + ": '" + text + "' is outside [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "]");
   }
   return v;
 }
 
-std::uint64_t Options::seed(const std::string& name) const {
-  const std::string t = text(name);
-  const auto v = parse_unsigned_token(t);
-  if (!v) bad(name, t, "is not an unsigned 64-bit integer");
-  return *v;
-}
-
-std::vector<std::string> Options::list(const std::string& name) const {
-  const std::string t = text(name);
+std::vector<std::string> Options::list_value(const std::string& name, const std::string& text) {
+  const auto bad = [&](const std::string& why) {
+    throw UsageError("--" + name + ": '" + text + "' " + why);
+  };
   std::vector<std::string> items;
-  std::stringstream in(t);
+  std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    if (item.empty()) bad(name, t, "has an empty item");
+    if (item.empty()) bad("has an empty item");
     items.push_back(item);
   }
-  if (!t.empty() && t.back() == ',') bad(name, t, "has an empty item");
-  if (items.empty()) bad(name, t, "is empty");
+  if (!text.empty() && text.back() == ',') bad("has an empty item");
+  if (items.empty()) bad("is empty");
   return items;
 }
 

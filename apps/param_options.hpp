@@ -1,8 +1,10 @@
 #pragma once
-// Rows (core/param_rows.hpp) on the command line: each row becomes one option with its default
-// (taken from the struct the command starts from) and range in --help; a given option is read
-// with the row's range and set; the report's block is the rows' values by key.
+// Rows (core/param_rows.hpp) on the command line: each row becomes one option bound to the struct
+// the command fills (its default and range in --help, its value set while parsing); the report's
+// block is the rows' values by key; README's tables are the rows as markdown.
 #include <nlohmann/json.hpp>
+#include <functional>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -11,53 +13,52 @@
 
 namespace verifybench::cli {
 
+/// Each row becomes one option bound to `p`: its default in --help is p's value now, a given value
+/// is read with the row's kind and range and set into p while the line is parsed, and a row not
+/// given derives its value (when_absent) once every given one is set. `p` must outlive parse().
 template <class P>
-void add_rows(Options& o, const std::vector<ParamRow<P>>& rows, const P& defaults) {
+void add_rows(Options& o, const std::vector<ParamRow<P>>& rows, P& p) {
   using Kind = typename ParamRow<P>::Kind;
   for (const auto& r : rows) {
-    const bool flag = r.kind == Kind::flag;
     std::string help = r.help;
     if (!r.expected.empty()) {
       help += ": " + r.expected;
     } else if (!r.range().empty()) {
       help += ", in " + r.range();
     }
-    o.add(r.option, flag ? "" : r.value_name, flag ? "" : r.text(defaults), help);
-  }
-}
-
-/// Sets `p` from the options given (the rest keep p's values); UsageError names the option.
-template <class P>
-void read_rows(const Options& o, const std::vector<ParamRow<P>>& rows, P& p) {
-  using Kind = typename ParamRow<P>::Kind;
-  for (const auto& r : rows) {
-    if (!o.given(r.option)) {
-      if (r.when_absent) r.when_absent(p);
+    std::function<void()> absent;
+    if (r.when_absent) absent = [r, &p] { r.when_absent(p); };
+    if (r.kind == Kind::flag) {
+      o.flag(r.option, help, [r, &p] { r.set(p, 1.0); });
       continue;
     }
-    switch (r.kind) {
-      case Kind::flag:
-        r.set(p, 1.0);
-        break;
-      case Kind::integer:
-        r.set(p, static_cast<double>(o.integer(r.option, static_cast<long long>(r.min),
-                                               static_cast<long long>(r.max))));
-        break;
-      case Kind::real:
-        if (r.infinite_ok && o.text(r.option) == "inf") {
-          r.set(p, std::numeric_limits<double>::infinity());
-        } else {
-          r.set(p, o.real(r.option, r.min, r.max));
-        }
-        break;
-      case Kind::text:
-        try {
-          r.set_text(p, o.text(r.option));
-        } catch (const std::invalid_argument& e) {
-          throw UsageError("--" + r.option + ": " + e.what());
-        }
-        break;
-    }
+    o.bind(r.option, r.value_name, r.text(p), help,
+           [r, &p](const std::string& v) {
+             switch (r.kind) {
+               case Kind::integer:
+                 r.set(p, static_cast<double>(Options::integer_value(
+                              r.option, v, static_cast<long long>(r.min),
+                              static_cast<long long>(r.max))));
+                 break;
+               case Kind::real:
+                 if (r.infinite_ok && v == "inf") {
+                   r.set(p, std::numeric_limits<double>::infinity());
+                 } else {
+                   r.set(p, Options::real_value(r.option, v, r.min, r.max));
+                 }
+                 break;
+               case Kind::text:
+                 try {
+                   r.set_text(p, v);
+                 } catch (const std::invalid_argument& e) {
+                   throw UsageError("--" + r.option + ": " + e.what());
+                 }
+                 break;
+               case Kind::flag:
+                 break;
+             }
+           },
+           absent);
   }
 }
 
