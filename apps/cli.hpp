@@ -81,7 +81,7 @@ int finish(const std::string& out, const nlohmann::json& parameters, const std::
   if (!shard.is_null()) context["shard"] = shard;
   write_report(out, make_report(context, parameters, rows));
   for (const auto& r : rows) {
-    if (r.status == "error") {
+    if (r.status == decltype(r.status)::error) {
       std::cerr << "verifybench: error: " << describe(r) << "\n";
       return 1;
     }

@@ -67,7 +67,7 @@ int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::stri
     for (CliqueRecord& r : run_clique_algorithms(g, file, known, names, params)) {
       progress.advance(1, path.filename().string() + " " + r.algorithm +
                               " omega=" + std::to_string(r.omega) +
-                              " known=" + (known ? std::to_string(*known) : "-") + " " + r.status +
+                              " known=" + (known ? std::to_string(*known) : "-") + " " + to_string(r.status) +
                               " " + std::to_string(r.time_ms) + " ms");
       rows.push_back(std::move(r));
       row_units.push_back(unit);

@@ -407,7 +407,7 @@ int cmd_loop(const std::vector<std::string>& args, const std::vector<std::string
   if (!quiet) std::cerr << md;
   std::cout << dir << "/loop.json\n";
   for (const ClosureRow& r : run.rows) {
-    if (r.record.status == "error") {
+    if (r.record.status == Status::error) {
       std::cerr << "verifybench: error: solver " << r.record.solver << " failed on maps " << r.query
                 << " -> " << r.match << ": " << r.record.message << "\n";
       return 1;

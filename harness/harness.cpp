@@ -37,7 +37,7 @@ TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_n
   r.dim = Dim;
   r.n = static_cast<int>(set.corr.size());
   r.solver_seed = params.seed;
-  r.status = to_string(result.status);
+  r.status = result.status;
   r.message = result.message;
   r.accepted = result.accepted;
   r.inliers = static_cast<int>(result.inliers.size());
@@ -132,7 +132,7 @@ void sweep_point(const SweepConfig& config, double ratio, long long first_unit,
         r.trial = t;
         r.data_seed = seeds[k];
         rows.push_back(std::move(r));
-        if (rows.back().status == "error") return;
+        if (rows.back().status == Status::error) return;
       }
     }
     if (on_trial) on_trial();
@@ -154,7 +154,7 @@ std::vector<TrialRecord> run_sweep(const SweepConfig& config, const SweepProgres
         sweep_point<3>(config, ratio, unit, point, on_trial);
       unit += config.trials;
       if (progress && !point.empty()) progress(point);
-      const bool failed = !point.empty() && point.back().status == "error";
+      const bool failed = !point.empty() && point.back().status == Status::error;
       rows.insert(rows.end(), point.begin(), point.end());
       if (failed) return rows;
     }
@@ -203,18 +203,20 @@ std::vector<CliqueRecord> run_clique_algorithms(const BitGraph& g, const std::st
       StopWatch clock;
       const CliqueSearchResult res = algorithm.run(g, params);
       r.time_ms = clock.ms();
-      r.status = res.stopped ? "time_limit" : res.optimal ? "ok" : "unproven";
+      r.status = res.stopped   ? SearchStatus::time_limit
+                 : res.optimal ? SearchStatus::ok
+                               : SearchStatus::unproven;
       r.omega = static_cast<int>(res.clique.size());
       r.nodes = res.nodes;
       r.upper_bound = res.upper_bound;
       r.local_search_steps = res.local_search_steps;
       for (int v : res.clique) r.clique.push_back(v + 1);
       if (!g.is_clique(res.clique)) {
-        r.status = "error";
+        r.status = SearchStatus::error;
         r.message = "the returned vertex set is not a clique";
       }
     } catch (const std::exception& e) {
-      r.status = "error";
+      r.status = SearchStatus::error;
       r.message = e.what();
     }
     rows.push_back(std::move(r));

@@ -14,7 +14,7 @@ ClosureScore score_at(const std::vector<const ClosureRow*>& rows, int positives,
                       const std::function<bool(const ClosureRow&)>& accept) {
   std::vector<bool> accepted, correct;
   for (const ClosureRow* r : rows) {
-    accepted.push_back(r->record.status != "error" && accept(*r));
+    accepted.push_back(r->record.status != Status::error && accept(*r));
     correct.push_back(r->correct);
   }
   return score_closures(accepted, correct, positives);

@@ -305,7 +305,7 @@ void solve_pair(Solver& solver, const std::string& name, Dump& dump, bool is_tru
         if (set.corr.empty()) {
           row.record.solver = name;
           row.record.dim = Dim;
-          row.record.status = "rejected";
+          row.record.status = Status::rejected;
           row.record.message = "no correspondence";
           return;
         }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "core/status.hpp"
+
 namespace verifybench {
 
 /// When a trial counts as a success; defaults are the 3DMatch registration-recall criteria
@@ -31,7 +33,7 @@ struct TrialRecord {
   int trial = 0;
   std::uint64_t data_seed = 0;    ///< seed the set was drawn with (0 for dumps)
   std::uint64_t solver_seed = 0;  ///< seed handed to the solver
-  std::string status;             ///< ok | rejected | time_limit | error
+  Status status = Status::ok;
   std::string message;            ///< error text, empty otherwise
   bool accepted = false;
   int inliers = 0;
@@ -69,7 +71,7 @@ struct CliqueRecord {
   std::string algorithm;
   int n = 0;
   long long edges = 0;
-  std::string status;   ///< ok (proven maximum) | time_limit | unproven (heuristic) | error
+  SearchStatus status = SearchStatus::ok;
   std::string message;  ///< error text
   int omega = 0;        ///< size of the clique found
   std::optional<int> known_omega;  ///< from MANIFEST.tsv beside the graph, when listed

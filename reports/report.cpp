@@ -92,7 +92,7 @@ json make_context(const std::vector<std::string>& command_line, std::uint64_t se
 }
 
 const char* decision_of(const TrialRecord& r) {
-  if (!r.expected_positive || r.status == "error") return nullptr;
+  if (!r.expected_positive || r.status == Status::error) return nullptr;
   if (*r.expected_positive) return r.accepted ? "TP" : "FN";
   return r.accepted ? "FP" : "TN";
 }
@@ -153,7 +153,7 @@ json to_json(const TrialRecord& r) {
             {"trial", r.trial},
             {"data_seed", r.data_seed},
             {"solver_seed", r.solver_seed},
-            {"status", r.status},
+            {"status", to_string(r.status)},
             {"accepted", r.accepted},
             {"inliers", r.inliers},
             {"true_inliers", r.true_inliers ? json(*r.true_inliers) : json(nullptr)},
@@ -223,8 +223,8 @@ json aggregate(const std::vector<TrialRecord>& rows) {
       accepted += r->accepted;
       calibration.push_back(r->calibration_ms);
       counts.add(*r);
-      errors += r->status == "error";
-      limited += r->status == "time_limit";
+      errors += r->status == Status::error;
+      limited += r->status == Status::time_limit;
       if (r->success) {
         ++judged;
         succeeded += *r->success;
@@ -274,13 +274,14 @@ namespace {
 // ran out of time (or a heuristic's) is wrong only when it claims more than the known omega, and
 // else says nothing (null), even when its clique happens to be a maximum one.
 json correctness(const CliqueRecord& r) {
-  if (!r.known_omega || r.status == "error") return nullptr;
-  if (r.status == "ok") return r.omega == *r.known_omega;
+  if (!r.known_omega || r.status == SearchStatus::error) return nullptr;
+  if (r.status == SearchStatus::ok) return r.omega == *r.known_omega;
   return r.omega > *r.known_omega ? json(false) : json(nullptr);
 }
 
 bool found_unproved(const CliqueRecord& r) {
-  return r.known_omega && r.status != "ok" && r.status != "error" && r.omega == *r.known_omega;
+  return r.known_omega && r.status != SearchStatus::ok && r.status != SearchStatus::error &&
+         r.omega == *r.known_omega;
 }
 }  // namespace
 
@@ -289,7 +290,7 @@ json to_json(const CliqueRecord& r) {
             {"algorithm", r.algorithm},
             {"n", r.n},
             {"edges", r.edges},
-            {"status", r.status},
+            {"status", to_string(r.status)},
             {"omega", r.omega},
             {"known_omega", r.known_omega ? json(*r.known_omega) : json(nullptr)},
             {"correct", correctness(r)},
@@ -317,7 +318,7 @@ json make_report(const json& context, const json& parameters,
     double total = 0;
     std::vector<double> times;
     for (const CliqueRecord* r : by_algorithm[name]) {
-      proven += r->status == "ok";
+      proven += r->status == SearchStatus::ok;
       const json c = correctness(*r);
       correct += c == true;
       wrong += c == false;

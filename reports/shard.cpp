@@ -41,6 +41,15 @@ std::optional<T> optional(const json& j, const char* key) {
   return get<T>(j, key);
 }
 
+/// The "status" field as its enum; an unknown name is refused with its value.
+template <class E>
+E status_field(const json& j) {
+  const std::string name = get<std::string>(j, "status");
+  const auto status = status_from_name<E>(name);
+  if (!status) bad("field 'status': unknown status '" + name + "'");
+  return *status;
+}
+
 std::string text_or_empty(const json& j, const char* key) {
   return j.contains(key) && !j.at(key).is_null() ? get<std::string>(j, key) : std::string();
 }
@@ -85,7 +94,7 @@ TrialRecord trial_from_json(const json& j) {
   r.trial = get<int>(j, "trial");
   r.data_seed = get<std::uint64_t>(j, "data_seed");
   r.solver_seed = get<std::uint64_t>(j, "solver_seed");
-  r.status = get<std::string>(j, "status");
+  r.status = status_field<Status>(j);
   r.message = text_or_empty(j, "message");
   r.accepted = get<bool>(j, "accepted");
   r.inliers = get<int>(j, "inliers");
@@ -145,7 +154,7 @@ CliqueRecord clique_from_json(const json& j) {
   r.algorithm = get<std::string>(j, "algorithm");
   r.n = get<int>(j, "n");
   r.edges = get<long long>(j, "edges");
-  r.status = get<std::string>(j, "status");
+  r.status = status_field<SearchStatus>(j);
   r.message = text_or_empty(j, "message");
   r.omega = get<int>(j, "omega");
   r.known_omega = optional<int>(j, "known_omega");

@@ -35,18 +35,4 @@ void register_solvers() {
   });
 }
 
-const char* to_string(Status s) {
-  switch (s) {
-    case Status::ok:
-      return "ok";
-    case Status::rejected:
-      return "rejected";
-    case Status::time_limit:
-      return "time_limit";
-    case Status::error:
-      return "error";
-  }
-  return "error";
-}
-
 }  // namespace verifybench

@@ -8,17 +8,11 @@
 
 #include "core/correspondences.hpp"
 #include "core/rigid_fit.hpp"
+#include "core/status.hpp"
 #include "solvers/params.hpp"
 
 namespace verifybench {
 
-enum class Status {
-  ok,          ///< search completed and the pair is accepted
-  rejected,    ///< search completed; fewer inliers than the accept threshold
-  time_limit,  ///< limit reached; the result is the best found so far (accepted may still be true)
-  error,       ///< the solver could not run (see message)
-};
-const char* to_string(Status s);
 
 struct StageTimes {
   double graph_ms = 0.0;   ///< building the correspondence graph

@@ -578,9 +578,9 @@ TEST(Calibration, CountRuleIsThePapersRule) {
       for (double ratio : {0.5, 0.9, 0.97, 1.0}) {
         const TrialRecord r =
             evaluate(*solver, name, draw<3>(300, ratio, 11), params, accept, criteria);
-        ASSERT_NE(r.status, "error") << r.message;
+        ASSERT_NE(r.status, Status::error) << r.message;
         EXPECT_EQ(r.accepted, r.inliers >= (k > 0 ? k : 5)) << name << " k=" << k;
-        EXPECT_EQ(r.status, r.accepted ? "ok" : "rejected");
+        EXPECT_EQ(r.status, r.accepted ? Status::ok : Status::rejected);
         EXPECT_TRUE(std::isnan(r.p_value));
         EXPECT_EQ(r.null_draws, 0);
         EXPECT_EQ(r.accept_rule, "count");
@@ -613,7 +613,7 @@ TEST(Calibration, DegenerateSetsAreNeverAccepted) {
         const TrialRecord r = evaluate(*solver, name, set, params, accept, criteria);
         EXPECT_FALSE(r.accepted) << name << " " << to_string(rule) << " n=" << r.n
                                  << " inliers=" << r.inliers << " " << r.message;
-        EXPECT_NE(r.status, "ok") << name;
+        EXPECT_NE(r.status, Status::ok) << name;
       }
     }
   }
@@ -624,7 +624,7 @@ TEST(Calibration, ReportScoresDecisionsAgainstHandCounts) {
   // (solver, expected, accepted, status): a: 3 TP, 1 FN, 2 FP, 4 TN; b: 1 TP, 1 TN, an error, an
   // unknown.
   auto add = [&](const std::string& s, std::optional<bool> expected, bool accepted,
-                 const std::string& status = "ok") {
+                 Status status = Status::ok) {
     TrialRecord r;
     r.solver = s;
     r.expected_positive = expected;
@@ -638,7 +638,7 @@ TEST(Calibration, ReportScoresDecisionsAgainstHandCounts) {
   for (int i = 0; i < 4; ++i) add("a", false, false);
   add("b", true, true);
   add("b", false, false);
-  add("b", false, true, "error");
+  add("b", false, true, Status::error);
   add("b", std::nullopt, true);
   const auto d = decisions(rows);
   ASSERT_EQ(d.size(), 2u);

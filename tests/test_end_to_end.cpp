@@ -21,7 +21,7 @@ TEST(EndToEnd, CliqueRecoversMotionAt95PercentOutliers) {
     const auto set = make_synthetic<3>(p);
     const TrialRecord r = evaluate(*clique, "clique", set, SolverParams{}, AcceptParams{},
                                       SuccessCriteria{});
-    EXPECT_EQ(r.status, "ok");
+    EXPECT_EQ(r.status, Status::ok);
     EXPECT_LT(r.rotation_error_deg, 1.0) << "seed " << seed;
     EXPECT_LT(r.translation_error, 0.1) << "seed " << seed;
     EXPECT_GE(r.inlier_recall, 0.9);

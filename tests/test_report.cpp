@@ -22,7 +22,7 @@ TrialRecord row(const std::string& solver, double ratio, double time_ms, bool su
   r.n = 100;
   r.outlier_ratio = ratio;
   r.noise = 0.01;
-  r.status = success ? "ok" : "rejected";
+  r.status = success ? Status::ok : Status::rejected;
   r.accepted = success;
   r.time_ms = time_ms;
   r.rotation_error_deg = success ? 0.1 : 90.0;

@@ -124,7 +124,7 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   r.trial = 3;
   r.data_seed = 0xFFFFFFFFFFFFFFF1ull;
   r.solver_seed = 12345678901234ull;
-  r.status = "time_limit";
+  r.status = vb::Status::time_limit;
   r.accepted = true;
   r.inliers = 12;
   r.true_inliers = 11;
@@ -150,7 +150,7 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   c.algorithm = "bbmc";
   c.n = 5;
   c.edges = 7;
-  c.status = "ok";
+  c.status = vb::SearchStatus::ok;
   c.omega = 3;
   c.known_omega = 3;
   c.clique = {1, 2, 5};
@@ -170,6 +170,28 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("p_value_range"), std::string::npos) << e.what();
     }
+  }
+  // Every status name reads back as its enumerator; any other text is refused, naming it.
+  for (vb::Status st : {vb::Status::ok, vb::Status::rejected, vb::Status::time_limit,
+                        vb::Status::error}) {
+    json row = j;
+    row["status"] = vb::to_string(st);
+    EXPECT_EQ(vb::trial_from_json(row).status, st);
+  }
+  for (vb::SearchStatus st : {vb::SearchStatus::ok, vb::SearchStatus::time_limit,
+                              vb::SearchStatus::unproven, vb::SearchStatus::error}) {
+    json row = k;
+    row["status"] = vb::to_string(st);
+    EXPECT_EQ(vb::clique_from_json(row).status, st);
+  }
+  json unknown = j;
+  unknown["status"] = "unproven";  // a search status, not a solver's
+  try {
+    vb::trial_from_json(unknown);
+    ADD_FAILURE() << "accepted status 'unproven' in a solver row";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown status 'unproven'"), std::string::npos)
+        << e.what();
   }
   json before = j;  // reports written before the range existed
   before.erase("p_value_range");
