@@ -1,5 +1,6 @@
 #include "apps/cli.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -25,6 +26,18 @@ void add_solver_options(Options& o, SolverOptions& s) {
       .seed("seed", s.params.seed, "seed of every random draw (recorded in the report)")
       .text("out", s.out, s.out_value, s.out_help)
       .flag("quiet", s.quiet, "no progress lines");
+}
+
+std::vector<ParamField> common_rows(const std::vector<std::string>& options) {
+  std::vector<ParamField> rows;
+  for (const std::string& option : options) {
+    const auto& all = common_param_family().fields;
+    const auto it = std::find_if(all.begin(), all.end(),
+                                 [&](const ParamField& f) { return f.option == option; });
+    if (it == all.end()) throw std::logic_error("no common solver row --" + option);
+    rows.push_back(*it);
+  }
+  return rows;
 }
 
 void check_solver_options(SolverOptions& s) {

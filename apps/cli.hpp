@@ -31,6 +31,10 @@ struct SolverOptions {
   std::string out_help = "report path (required; written atomically; - for stdout)";
 };
 void add_solver_options(Options& o, SolverOptions& s);
+/// The common solver rows named (their options), in that order: a command that needs only some of
+/// them (`dimacs`: the budget; `graph`: eps and the graph's) binds the same rows, so the names,
+/// defaults and ranges cannot drift.
+std::vector<ParamField> common_rows(const std::vector<std::string>& options);
 /// Every name against the registry (UnknownSolver lists the known ones), the solver parameters and
 /// the accept rule validated (UsageError naming the key and value).
 void check_solver_options(SolverOptions& s);

@@ -15,12 +15,8 @@ namespace verifybench {
 int cmd_dimacs(const std::vector<std::string>& args, const std::vector<std::string>& argv) {
   // The solvers' rows of the time budget, threads and graph cap (solvers/params.cpp): one search
   // a graph is one "pair".
-  std::vector<ParamField> budget_rows;
-  for (const ParamField& f : common_param_family().fields) {
-    if (f.option == "time-limit" || f.option == "threads" || f.option == "max-graph-mb") {
-      budget_rows.push_back(f);
-    }
-  }
+  const std::vector<ParamField> budget_rows =
+      cli::common_rows({"time-limit", "threads", "max-graph-mb"});
   std::vector<std::string> files, names{kDefaultCliqueAlgorithm};
   SolverParams solver;
   CliqueSearchParams params;

@@ -15,6 +15,7 @@
 #include <variant>
 
 #include "apps/cli.hpp"
+#include "apps/param_options.hpp"
 #include "core/timer.hpp"
 #include "datasets/dump_format.hpp"
 #include "graph/compatibility_graph.hpp"
@@ -119,25 +120,17 @@ std::string shortest(double v) {
 
 int cmd_graph(const std::vector<std::string>& args, const std::vector<std::string>&) {
   std::string dir, out;
-  double eps = SolverParams{}.eps;
-  long long max_graph_mb = 4096;
-  int threads = 1;
+  SolverParams shape;  // eps, the graph cap and threads: the solvers' own rows (solvers/params.cpp)
   bool overwrite = false, quiet = false;
   Options o;
   o.text("dump", dir, "DIR",
          "dump folder, as `run` reads it: dump.json + matches.tsv, or corr.txt (required)")
-      .real("eps", eps, "M",
-            "pair length tolerance of Eq. (1) [m], > 0 (the same option and default as `run`)",
-            1e-12, 1e12)
       .text("out", out, "G.clq",
             "DIMACS file to write (required; written atomically; '-' = stdout); an existing file "
             "is refused unless --overwrite")
-      .flag("overwrite", overwrite, "replace an existing --out file")
-      .integer("max-graph-mb", max_graph_mb, "MB", "refuse graphs whose adjacency rows exceed this",
-               1, 1LL << 30)
-      .integer("threads", threads, "T",
-               "threads building the graph (0 = all cores; same graph for any)", 0, 1024)
-      .flag("quiet", quiet, "no summary line on stderr");
+      .flag("overwrite", overwrite, "replace an existing --out file");
+  cli::add_rows(o, cli::common_rows({"eps", "max-graph-mb", "threads"}), shape);
+  o.flag("quiet", quiet, "no summary line on stderr");
   if (o.parse_or_help(
           args,
           "usage: verifybench graph --dump DIR [--eps M] --out G.clq [--overwrite]\n"
@@ -152,7 +145,9 @@ int cmd_graph(const std::vector<std::string>& args, const std::vector<std::strin
     return 0;
   o.require("dump");
   o.require("out");
-  const std::size_t max_bytes = static_cast<std::size_t>(max_graph_mb) << 20;
+  const double eps = shape.eps;
+  const std::size_t max_bytes = shape.max_graph_bytes;
+  const int threads = shape.threads;
   const bool to_stdout = out == "-";
   if (!to_stdout) {
     std::error_code ec;
