@@ -56,6 +56,8 @@ int cmd_list(const std::vector<std::string>& args) {
                 cli::rows_markdown(retrieval_param_rows(), loop.retrieval).c_str());
     std::printf("| **dense check** | | |\n%s",
                 cli::rows_markdown(dense_check_param_rows(), loop.dense).c_str());
+    std::printf("| **loop consistency** | | |\n%s",
+                cli::rows_markdown(consistency_param_rows(), loop.consistency).c_str());
     std::printf("| **odometry: drift (also the pose prior's and the pose graph's sigmas)** | | |\n%s",
                 cli::rows_markdown(drift_param_rows(), loop.drift).c_str());
     std::printf("| **odometry: gicp** | | |\n%s",

@@ -103,11 +103,12 @@ void add_loop_options(Options& o, LoopLine& l, LoopConfig& c, cli::SolverOptions
             "poses: a TUM or KITTI file, matched to the scans by stamp, else by index");
   cli::add_rows(o, gicp_param_rows(), c.gicp);
   cli::add_rows(o, drift_param_rows(), c.drift);
-  o.group("scans, maps, retrieval, ground truth, pose graph, dense check");
+  o.group("scans, maps, retrieval, ground truth, pose graph, dense check, loop consistency");
   cli::add_rows(o, loop_param_rows(), c);
   cli::add_rows(o, local_map_param_rows(), c.maps);
   cli::add_rows(o, retrieval_param_rows(), c.retrieval);
   cli::add_rows(o, dense_check_param_rows(), c.dense);
+  cli::add_rows(o, consistency_param_rows(), c.consistency);
   o.group(
       "front end of each local map (the same options as `verifybench extract`; --max-hamming "
       "and --max-feature-distance also bound retrieval's votes)");
@@ -297,6 +298,7 @@ nlohmann::json loop_parameters(const LoopLine& l, const LoopConfig& c,
   loop.update(cli::rows_json(loop_param_rows(), c));
   loop.update(cli::rows_json(local_map_param_rows(), c.maps));
   loop.update(cli::rows_json(retrieval_param_rows(), c.retrieval));
+  loop.update(cli::rows_json(consistency_param_rows(), c.consistency));
   loop["dense_check"]["icp_max_iterations"] = c.dense.icp.max_iterations;
   loop["gicp"]["max_iterations"] = c.gicp.max_iterations;
   if (!c.source) {

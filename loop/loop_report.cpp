@@ -124,6 +124,7 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
     row["T_match_query_estimate"] = matrix_json(r.T_estimate);
     row["T_match_query_truth"] = matrix_json(r.T_truth);
     row["rule_accepted"] = r.rule_accepted;
+    row["loop_consistent"] = r.consistent ? nlohmann::json(*r.consistent) : nlohmann::json(nullptr);
     if (r.dense.ran) {
       row["dense_check"] = {
           {"overlap", r.dense.overlap},

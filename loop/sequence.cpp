@@ -93,6 +93,7 @@ void LoopConfig::validate() const {
   retrieval.validate();
   drift.validate();
   dense.validate();
+  consistency.validate();
   params.validate();
   accept.validate();
   if (!source) {
@@ -387,6 +388,37 @@ void verify_candidates(const LoopConfig& config, const MapsAndFeatures& mf, cons
   run.seconds["verify_s"] = clock.ms() / 1000.0;
 }
 
+/// Verification across closures (loop/consistency.hpp, when on): per solver, the accepted closures
+/// outside the largest set that pairwise agree through the odometry are rejected.
+void check_consistency(const LoopConfig& config, const MapsAndFeatures& mf, LoopRun& run) {
+  if (config.consistency.confidence <= 0.0) return;
+  StopWatch clock;
+  for (const std::string& solver : config.solvers) {
+    std::vector<ClosureRow*> accepted;
+    for (ClosureRow& row : run.rows) {
+      if (row.record.solver == solver && row.record.accepted) accepted.push_back(&row);
+    }
+    if (accepted.empty()) continue;
+    std::vector<LoopMeasurement> loops;
+    for (const ClosureRow* row : accepted) loops.push_back({row->query, row->match, row->T_estimate});
+    const ConsistencyModel model{config.drift, config.loop_sigma_trans, config.loop_sigma_rot_deg,
+                                 accepted.front()->record.dim};
+    const std::vector<int> kept = consistent_set(loops, mf.maps, model, config.consistency,
+                                                 config.params.time_limit_s);
+    for (std::size_t k = 0; k < accepted.size(); ++k) {
+      ClosureRow& row = *accepted[k];
+      row.consistent = std::binary_search(kept.begin(), kept.end(), static_cast<int>(k));
+      if (!*row.consistent) {
+        row.record.accepted = false;
+        row.record.message = "loop consistency: outside the largest consistent set (" +
+                             std::to_string(kept.size()) + " of " +
+                             std::to_string(accepted.size()) + " closures)";
+      }
+    }
+  }
+  run.seconds["consistency_s"] = clock.ms() / 1000.0;
+}
+
 /// Metrics of the decisions, back end and metrics of the trajectories, per solver
 /// (loop/evaluation.hpp): scores and curves; the pose graph with the accepted closures by each
 /// back end (loop/backend.hpp: plain, robust); the APE of every scan with and without loops.
@@ -418,6 +450,8 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress) {
   truth_and_retrieval(config, mf, run);
   // Verification: every solver on every candidate, then the dense check.
   verify_candidates(config, mf, report, run);
+  // Verification across closures: the largest pairwise-consistent set (when on).
+  check_consistency(config, mf, run);
   // Metrics and back end: scores, pose graphs (plain, robust), APE.
   back_end_and_metrics(config, mf, run);
   run.seconds["total_s"] = total_clock.ms() / 1000.0;

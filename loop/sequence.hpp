@@ -39,6 +39,7 @@
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
 #include "generators/world.hpp"
+#include "loop/consistency.hpp"
 #include "loop/dense_check.hpp"
 #include "loop/relations.hpp"
 #include "loop/local_maps.hpp"
@@ -98,6 +99,8 @@ struct LoopConfig {
   bool odometry_prior = false;
   /// After the accept rule: ICP from the fitted motion and the maps' overlap (off by default).
   DenseCheckParams dense;
+  /// After the dense check: the largest pairwise-consistent set of closures per solver (off).
+  ConsistencyParams consistency;
   std::uint64_t seed = 1;
   int threads = 1;  ///< maps built in parallel; results do not depend on it
 
@@ -137,6 +140,10 @@ struct ClosureRow {
   /// The accept rule's decision; record.accepted is it and the dense check's (when on).
   bool rule_accepted = false;
   DenseCheck dense;  ///< run on every row with a motion when the check is on
+  /// The loop consistency check (loop/consistency.hpp), on the closures accepted before it:
+  /// whether this one is in the largest consistent set; unset when the check is off or did not
+  /// see the row.
+  std::optional<bool> consistent;
 };
 
 struct CurvePoint {

@@ -887,6 +887,40 @@ TEST(LoopCli, RadishIntelWithItsOdometryLowersTheApeAgainstTheCorrectedLog) {
   fs::remove_all(dir);
 }
 
+// intel with the loop consistency check (loop/consistency.hpp) over the count rule at 14 inliers and
+// 7 m maps (BENCHMARK.md 33): every accepted closure is correct against the corrected log and they
+// lower the APE. (The same setting accepts only aliases on aces: see there.)
+TEST(LoopCli, RadishIntelWithLoopConsistencyClosesOnlyCorrectLoopsAndLowersTheApe) {
+  const fs::path data = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d";
+  if (!fs::exists(data / "intel.clf")) GTEST_SKIP() << "no " << data << " (../shared/data absent)";
+  const fs::path dir = fs::temp_directory_path() / "vb_loop_intel_pcm";
+  fs::remove_all(dir);
+  const auto r = run_cli(
+      "loop --no-plots --quiet --sequence " + (data / "intel.clf").string() +
+      " --odometry log --reference " + (data / "corrected" / "intel-corrected.log").string() +
+      " --pipeline 2d --cell 0.1 --range 20 --map-length 7 --map-voxel 0.05 --scan-spacing 0.2"
+      " --eps 0.2 --pose-tolerance 1 --drift-trans 0.1 --drift-yaw-deg 2 --accept count"
+      " --min-inliers 14 --loop-consistency 0.999 --solvers clique --out " + dir.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "loop.json");
+  const auto j = nlohmann::json::parse(in);
+  const auto& clique = j["summary"][0];
+  EXPECT_GE(clique["tp"].get<int>(), 5) << clique.dump();
+  EXPECT_EQ(clique["fp"].get<int>(), 0) << clique.dump();
+  EXPECT_LT(clique["ape_with_m"].get<double>(), clique["ape_without_m"].get<double>());
+  EXPECT_EQ(j["parameters"]["loop"]["loop_consistency"], 0.999);
+  int dropped = 0;
+  for (const auto& row : j["closures"]) {
+    if (row["loop_consistent"] == false) {
+      ++dropped;
+      EXPECT_FALSE(row["accepted"].get<bool>());
+      EXPECT_TRUE(row["rule_accepted"].get<bool>());
+    }
+  }
+  EXPECT_GE(dropped, 1);  // it removed what the count rule let through
+  fs::remove_all(dir);
+}
+
 // `loop` offers every front-end option of `extract`, with the same value ranges (one declaration:
 // frontend/params.cpp); the names are listed here as the oracle, so a dropped row fails.
 TEST(LoopCli, HelpListsEveryFrontEndOptionOfExtractWithItsRange) {
