@@ -1,6 +1,7 @@
 #include "apps/options.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -33,9 +34,9 @@ Options& Options::bind(const std::string& name, const std::string& value_name,
 }
 
 Options& Options::flag(const std::string& name, const std::string& help,
-                       std::function<void()> on) {
+                       std::function<void()> on, std::function<void()> absent) {
   order_.push_back(name);
-  specs_[name] = {"", "", help, nullptr, std::move(on), nullptr};
+  specs_[name] = {"", "", help, nullptr, std::move(on), std::move(absent)};
   return *this;
 }
 
@@ -79,6 +80,9 @@ void Options::parse(const std::vector<std::string>& given_args) {
   // CLI11 does the splitting ("--name value", "--name=value", positionals, help); the checks it
   // words differently come first, so every message names the option as the rest of the tool does.
   std::map<std::string, int> seen;
+  // --help prints the options whatever the others' values: no setter runs then.
+  const bool help_asked = std::find(args.begin(), args.end(), "--help") != args.end() ||
+                          std::find(args.begin(), args.end(), "-h") != args.end();
   for (const std::string& arg : args) {
     if (arg.rfind("--", 0) != 0 || arg == "--help") continue;
     const std::string name =
@@ -104,9 +108,16 @@ void Options::parse(const std::vector<std::string>& given_args) {
     if (name[0] == '\n') continue;
     const Spec& spec = specs_.at(name);
     if (spec.set) {
-      app.add_option_function<std::string>("--" + name, spec.set)->allow_extra_args(false);
+      app.add_option_function<std::string>("--" + name,
+                                            [this, name, help_asked, &spec](const std::string& v) {
+                                              if (v.empty()) empty_.insert(name);
+                                              if (!help_asked) spec.set(v);
+                                            })
+          ->allow_extra_args(false);
     } else {
-      app.add_flag_callback("--" + name, spec.on);
+      app.add_flag_callback("--" + name, [help_asked, &spec] {
+        if (!help_asked) spec.on();
+      });
     }
   }
   if (positional_) app.add_option(positional_name_, *positional_);
@@ -158,7 +169,7 @@ std::string Options::help() const {
 }
 
 void Options::require(const std::string& name) const {
-  if (!given(name)) throw UsageError("option --" + name + " is required");
+  if (!given(name) || empty_.count(name)) throw UsageError("option --" + name + " is required");
 }
 
 double Options::real_value(const std::string& name, const std::string& text, double min,

@@ -39,8 +39,9 @@ class Options {
   /// default.
   Options& bind(const std::string& name, const std::string& value_name, const std::string& shown,
                 const std::string& help, Set set, std::function<void()> absent = {});
-  /// A flag: `on` runs when given.
-  Options& flag(const std::string& name, const std::string& help, std::function<void()> on);
+  /// A flag: `on` runs when given, `absent` (optional) after parsing when it was not.
+  Options& flag(const std::string& name, const std::string& help, std::function<void()> on,
+                std::function<void()> absent = {});
   Options& flag(const std::string& name, bool& field, const std::string& help) {
     return flag(name, help, [&field] { field = true; });
   }
@@ -66,7 +67,8 @@ class Options {
   Options& list(const std::string& name, std::vector<std::string>& field,
                 const std::string& value_name, const std::string& help);
 
-  /// Sets every given option's field, then runs the `absent` hooks of those not given. Throws
+  /// Sets every given option's field, then runs the `absent` hooks of those not given (neither
+  /// when --help is among the arguments: then only the help is printed). Throws
   /// UsageError on an unknown option (naming the nearest known one), a missing value, a repeated
   /// option, a stray argument or a value its setter refuses. `-o` and `-q` stand for --out and
   /// --quiet where declared.
@@ -75,7 +77,7 @@ class Options {
   bool parse_or_help(const std::vector<std::string>& args, const std::string& usage);
   std::string help() const;
   bool given(const std::string& name) const { return given_.count(name) > 0; }
-  /// UsageError "option --name is required" when it was not given.
+  /// UsageError "option --name is required" when it was not given, or given an empty value.
   void require(const std::string& name) const;
 
   /// The strict readers the setters use (messages: "--name: 'text' is outside [min, max]").
@@ -95,6 +97,7 @@ class Options {
   std::vector<std::string> order_;
   std::map<std::string, Spec> specs_;
   std::set<std::string> given_;
+  std::set<std::string> empty_;  ///< given with an empty value
   std::vector<std::string>* positional_ = nullptr;
   std::string positional_name_;
   bool help_ = false;

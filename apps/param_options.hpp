@@ -29,7 +29,7 @@ void add_rows(Options& o, const std::vector<ParamRow<P>>& rows, P& p) {
     std::function<void()> absent;
     if (r.when_absent) absent = [r, &p] { r.when_absent(p); };
     if (r.kind == Kind::flag) {
-      o.flag(r.option, help, [r, &p] { r.set(p, 1.0); });
+      o.flag(r.option, help, [r, &p] { r.set(p, 1.0); }, absent);
       continue;
     }
     o.bind(r.option, r.value_name, r.text(p), help,

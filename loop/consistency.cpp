@@ -62,26 +62,39 @@ double cycle_d2(const LoopMeasurement& a, const LoopMeasurement& b,
   const Eigen::Matrix<double, 6, 1> s_q = odometry_sigma(model.drift, sq);
   const Eigen::Matrix<double, 6, 1> s_m = odometry_sigma(model.drift, sm);
   const double loop_rot = model.loop_sigma_rot_deg * M_PI / 180.0;
-  // (roll, pitch, yaw, x, y, z): the yaw walk dominates the drift model's rotation.
+  // (roll, pitch, yaw, x, y, z): the yaw walk dominates the drift model's rotation (in 3D its
+  // sigma stands for every axis, and the largest axis's translation sigma for each: a gate at
+  // least as wide as the stated confidence).
   const double var_theta = s_q(2) * s_q(2) + s_m(2) * s_m(2) + 2.0 * loop_rot * loop_rot;
   const double trans_q = s_q.tail<3>().head(model.dim == 2 ? 2 : 3).maxCoeff();
   const double trans_m = s_m.tail<3>().head(model.dim == 2 ? 2 : 3).maxCoeff();
-  // A rotation error of the cycle's first legs swings the loops' own translations.
-  const double lever = std::max(a.T_match_query.translation().norm(),
-                                b.T_match_query.translation().norm());
+  // Rotation errors swing what follows them in E: a loop's rotation swings the rest of the cycle
+  // up to the other loop's end (|t(O_m Z_b) - t(Z_a)|, and the same with a and b swapped); the
+  // end of an odometry segment's yaw swings the loop that leaves it (|t(Z)|). (odometry_sigma
+  // already holds the swing within a segment.)
+  const double cycle_lever = std::max(
+      ((odometry_between(maps, a.match, b.match) * b.T_match_query).translation() -
+       a.T_match_query.translation())
+          .norm(),
+      ((odometry_between(maps, b.match, a.match) * a.T_match_query).translation() -
+       b.T_match_query.translation())
+          .norm());
+  const double loop_lever = std::max(a.T_match_query.translation().norm(),
+                                     b.T_match_query.translation().norm());
   const double var_t = trans_q * trans_q + trans_m * trans_m +
                        2.0 * model.loop_sigma_trans * model.loop_sigma_trans +
-                       var_theta * lever * lever;
+                       loop_rot * loop_rot * cycle_lever * cycle_lever +
+                       (s_q(2) * s_q(2) + s_m(2) * s_m(2)) * loop_lever * loop_lever;
   return theta * theta / var_theta + t * t / var_t;
 }
 
-std::vector<int> consistent_set(const std::vector<LoopMeasurement>& loops,
-                                const std::vector<LocalMap>& maps, const ConsistencyModel& model,
-                                const ConsistencyParams& params, double time_limit_s) {
+ConsistentSet consistent_set(const std::vector<LoopMeasurement>& loops,
+                             const std::vector<LocalMap>& maps, const ConsistencyModel& model,
+                             const ConsistencyParams& params, double time_limit_s) {
   const int n = static_cast<int>(loops.size());
-  std::vector<int> all(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) all[static_cast<std::size_t>(i)] = i;
-  if (n < 2 || params.confidence <= 0.0) return all;
+  ConsistentSet out;
+  for (int i = 0; i < n; ++i) out.kept.push_back(i);
+  if (n < 2 || params.confidence <= 0.0) return out;
   const double gate = chi2_quantile(params.confidence, model.dim == 2 ? 3 : 6);
   BitGraph g(n);
   for (int i = 0; i < n; ++i) {
@@ -94,10 +107,12 @@ std::vector<int> consistent_set(const std::vector<LoopMeasurement>& loops,
   }
   CliqueSearchParams search;
   search.time_limit_s = time_limit_s;
-  std::vector<int> kept = max_clique(g, search).clique;
-  if (kept.empty()) kept.push_back(0);  // no edge: any one closure is a set of one
-  std::sort(kept.begin(), kept.end());
-  return kept;
+  const CliqueSearchResult found = max_clique(g, search);
+  out.kept = found.clique;
+  out.proven = !found.stopped;
+  if (out.kept.empty()) out.kept.push_back(0);  // no edge: any one closure is a set of one
+  std::sort(out.kept.begin(), out.kept.end());
+  return out;
 }
 
 }  // namespace verifybench

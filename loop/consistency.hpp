@@ -6,8 +6,9 @@
 //   E = O(qa, qb)^-1 * Z_a^-1 * O(ma, mb) * Z_b,  O(i, j) = X_i^-1 X_j (odometry),
 // is the identity when both are right. Its d^2 = theta^2 / s_theta^2 + |t|^2 / s_t^2, with the
 // drift model's sigmas of both odometry segments (odometry_sigma: yaw and per-axis translation),
-// both loop edges' sigmas, and the rotation's lever over the loops' translations; a and b are
-// consistent when d^2 is within the chi-square gate at `confidence` (3 dof in 2D, 6 in 3D). The
+// both loop edges' sigmas, and the translation each rotation error swings (its lever arm in E);
+// a and b are consistent when d^2 is within the chi-square gate at `confidence` (3 dof in 2D, 6
+// in 3D, where the yaw's and the largest axis's sigmas stand for every axis: a wider gate). The
 // closures kept are the largest pairwise-consistent set: a maximum clique of the consistency graph,
 // found by the project's exact clique search. Per solver, after the accept rule and the dense
 // check; 0 = off (the paper's setting).
@@ -48,9 +49,14 @@ struct ConsistencyModel {
 double cycle_d2(const LoopMeasurement& a, const LoopMeasurement& b,
                 const std::vector<LocalMap>& maps, const ConsistencyModel& model);
 
-/// Indices into `loops` of the largest pairwise-consistent set, ascending (all of them when fewer
-/// than two); `time_limit_s` bounds the clique search (its best so far past it).
-std::vector<int> consistent_set(const std::vector<LoopMeasurement>& loops,
+struct ConsistentSet {
+  std::vector<int> kept;  ///< indices into the loops, ascending
+  bool proven = true;     ///< false: the time limit cut the clique search (its best so far)
+};
+
+/// The largest pairwise-consistent set of `loops` (all of them when fewer than two, or when the
+/// check is off); `time_limit_s` bounds the clique search.
+ConsistentSet consistent_set(const std::vector<LoopMeasurement>& loops,
                                 const std::vector<LocalMap>& maps, const ConsistencyModel& model,
                                 const ConsistencyParams& params, double time_limit_s);
 

@@ -403,8 +403,9 @@ void check_consistency(const LoopConfig& config, const MapsAndFeatures& mf, Loop
     for (const ClosureRow* row : accepted) loops.push_back({row->query, row->match, row->T_estimate});
     const ConsistencyModel model{config.drift, config.loop_sigma_trans, config.loop_sigma_rot_deg,
                                  accepted.front()->record.dim};
-    const std::vector<int> kept = consistent_set(loops, mf.maps, model, config.consistency,
-                                                 config.params.time_limit_s);
+    const ConsistentSet set = consistent_set(loops, mf.maps, model, config.consistency,
+                                             config.params.time_limit_s);
+    const std::vector<int>& kept = set.kept;
     for (std::size_t k = 0; k < accepted.size(); ++k) {
       ClosureRow& row = *accepted[k];
       row.consistent = std::binary_search(kept.begin(), kept.end(), static_cast<int>(k));
@@ -412,7 +413,8 @@ void check_consistency(const LoopConfig& config, const MapsAndFeatures& mf, Loop
         row.record.accepted = false;
         row.record.message = "loop consistency: outside the largest consistent set (" +
                              std::to_string(kept.size()) + " of " +
-                             std::to_string(accepted.size()) + " closures)";
+                             std::to_string(accepted.size()) + " closures" +
+                             (set.proven ? ")" : "; the time limit cut the search: its best set)");
       }
     }
   }

@@ -52,6 +52,8 @@ vb::ConsistencyModel planar_model() {
 
 TEST(LoopConsistency, TwoExactLoopsCloseTheirCycle) {
   // A square lap of 10 m sides, driven twice: maps 8.. revisit maps 0..
+  // The second lap's odometry has drifted (3 m, -2 m, 40 deg), so each loop's motion is far from
+  // the identity.
   std::vector<vb::Rigid<3>> poses;
   for (int lap = 0; lap < 2; ++lap) {
     for (int k = 0; k < 8; ++k) {
@@ -59,12 +61,18 @@ TEST(LoopConsistency, TwoExactLoopsCloseTheirCycle) {
       const double along = (k % 2) * 5.0;
       const double x[] = {along, 10.0, 10.0 - along, 0.0};
       const double y[] = {0.0, along, 10.0, 10.0 - along};
-      poses.push_back(pose2d(x[side], y[side], 90.0 * side));
+      poses.push_back(pose2d(3.0 * lap, -2.0 * lap, 40.0 * lap) *
+                      pose2d(x[side], y[side], 90.0 * side));
     }
   }
   const auto maps = maps_at(poses);
   const auto model = planar_model();
+  ASSERT_GT(exact(maps, 9, 1).T_match_query.translation().norm(), 1.0);
   EXPECT_NEAR(vb::cycle_d2(exact(maps, 9, 1), exact(maps, 12, 4), maps, model), 0.0, 1e-18);
+  // The same two loops written the other way round (match <- query inverted) do not close it.
+  vb::LoopMeasurement inverted = exact(maps, 12, 4);
+  inverted.T_match_query = inverted.T_match_query.inverse();
+  EXPECT_GT(vb::cycle_d2(exact(maps, 9, 1), inverted, maps, model), vb::chi2_quantile(0.999, 3));
   // One loop off by 90 degrees (a square room's alias): far outside the 3-dof gate.
   const double alias =
       vb::cycle_d2(exact(maps, 9, 1), exact(maps, 12, 4, pose2d(0, 0, 90)), maps, model);
@@ -81,13 +89,16 @@ TEST(LoopConsistency, ATranslationOffsetCostsItsSquareOverTheSummedVariances) {
   const vb::LoopMeasurement a{3, 0, pose2d(30.0, 0.0, 0.0)};
   const vb::LoopMeasurement b{5, 1, pose2d(40.0 + 0.7, 0.0, 0.0)};
   // By hand: the queries' segment 3 -> 5 is 20 m, the matches' 0 -> 1 is 10 m; the cycle's
-  // translation is -20 - 30 + 10 + 40.7 = 0.7 m; the lever is the longer loop, 40.7 m.
+  // translation is -20 - 30 + 10 + 40.7 = 0.7 m. A loop's rotation error swings the rest of the
+  // cycle, 10 + 40.7 - 30 = 20.7 m (either way round); the odometry's yaw swings the longer loop,
+  // 40.7 m.
   const Eigen::Matrix<double, 6, 1> s_q = vb::odometry_sigma(model.drift, 20.0);
   const Eigen::Matrix<double, 6, 1> s_m = vb::odometry_sigma(model.drift, 10.0);
   const double loop_rot = 2.0 * M_PI / 180.0;
-  const double var_theta = s_q(2) * s_q(2) + s_m(2) * s_m(2) + 2.0 * loop_rot * loop_rot;
+  const double yaw2 = s_q(2) * s_q(2) + s_m(2) * s_m(2);
   const double t_q = std::max(s_q(3), s_q(4)), t_m = std::max(s_m(3), s_m(4));
-  const double var_t = t_q * t_q + t_m * t_m + 2.0 * 0.25 + var_theta * 40.7 * 40.7;
+  const double var_t = t_q * t_q + t_m * t_m + 2.0 * 0.25 + loop_rot * loop_rot * 20.7 * 20.7 +
+                       yaw2 * 40.7 * 40.7;
   EXPECT_NEAR(vb::cycle_d2(a, b, maps, model), 0.49 / var_t, 1e-12);
 }
 
@@ -124,7 +135,9 @@ TEST(LoopConsistency, KeepsTheLargestConsistentSetAsBruteForceFindsIt) {
       }
       if (clique) best = std::max(best, __builtin_popcount(static_cast<unsigned>(mask)));
     }
-    const auto kept = vb::consistent_set(loops, maps, model, params, 10.0);
+    const vb::ConsistentSet set = vb::consistent_set(loops, maps, model, params, 10.0);
+    EXPECT_TRUE(set.proven);
+    const auto& kept = set.kept;
     EXPECT_EQ(static_cast<int>(kept.size()), best) << "trial " << trial;
     for (std::size_t i = 0; i < kept.size(); ++i) {
       for (std::size_t j = i + 1; j < kept.size(); ++j) {
@@ -137,5 +150,6 @@ TEST(LoopConsistency, KeepsTheLargestConsistentSetAsBruteForceFindsIt) {
   vb::ConsistencyParams off;  // 0: every loop kept
   std::vector<vb::LoopMeasurement> two{{1, 0, pose2d(0, 0, 0)}, {2, 0, pose2d(0, 0, 90)}};
   const auto maps = maps_at({pose2d(0, 0, 0), pose2d(1, 0, 0), pose2d(2, 0, 0)});
-  EXPECT_EQ(vb::consistent_set(two, maps, planar_model(), off, 1.0), (std::vector<int>{0, 1}));
+  EXPECT_EQ(vb::consistent_set(two, maps, planar_model(), off, 1.0).kept,
+            (std::vector<int>{0, 1}));
 }

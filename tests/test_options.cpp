@@ -125,6 +125,24 @@ TEST(Options, HelpShowsEachFieldsValueAtDeclarationAndTheRowsRange) {
   EXPECT_EQ(help.find("fast (default"), std::string::npos) << help;  // a flag shows no default
 }
 
+TEST(Options, ARequiredOptionGivenEmptyIsMissingAndHelpSetsNothing) {
+  std::string out = "unchanged";
+  Toy toy;
+  vb::Options o;
+  vb::cli::add_rows(o, toy_rows(), toy);
+  o.text("out", out, "FILE", "report");
+  o.parse({"--out", ""});
+  EXPECT_TRUE(o.given("out"));
+  EXPECT_THROW(o.require("out"), vb::UsageError);
+  // --help prints the options whatever the other values are: a bad one is not refused, none is set.
+  Toy other;
+  vb::Options h;
+  vb::cli::add_rows(h, toy_rows(), other);
+  EXPECT_NO_THROW(h.parse({"--eps", "nan", "--count", "7", "--help"}));
+  EXPECT_EQ(other.count, 3);
+  EXPECT_DOUBLE_EQ(other.eps, 0.1);
+}
+
 TEST(Options, RefusesWithTheOptionAndTheValueNamed) {
   EXPECT_EQ(refusal({"--eps", "11"}), "--eps: '11' is outside [1e-09, 10]");
   EXPECT_EQ(refusal({"--eps", "nan"}), "--eps: 'nan' is not a finite number");
