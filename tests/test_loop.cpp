@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -826,26 +828,46 @@ TEST(LoopCli, BalmRealworldSmallSceneSettingsCloseItsLoops) {
   fs::remove_all(dir);
 }
 
+namespace {
+
+/// `loop` on radish2d's LOG with its own odometry against its corrected log, README's indoor 2D
+/// scale (0.1 m cells, 20 m range, 0.05 m map voxels, a scan every 0.2 m, eps 0.2 m, 1 m pose
+/// tolerance, wheel odometry's sigmas: 10% of travel, 2 deg / sqrt(m) of yaw), clique alone, plus
+/// `settings`; its loop.json, or nullopt (the test skips) without ../shared/data.
+std::optional<nlohmann::json> radish_loop(const std::string& log, const std::string& settings) {
+  const fs::path data = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d";
+  if (!fs::exists(data / (log + ".clf"))) return std::nullopt;
+  // One folder per log and settings: ctest runs these tests side by side.
+  const fs::path dir = fs::temp_directory_path() /
+                       ("vb_loop_radish_" + log + "_" +
+                        std::to_string(std::hash<std::string>{}(settings)));
+  fs::remove_all(dir);
+  const auto r = run_cli(
+      "loop --no-plots --quiet --sequence " + (data / (log + ".clf")).string() +
+      " --odometry log --reference " + (data / "corrected" / (log + "-corrected.log")).string() +
+      " --pipeline 2d --cell 0.1 --range 20 --map-voxel 0.05 --scan-spacing 0.2 --eps 0.2"
+      " --pose-tolerance 1 --drift-trans 0.1 --drift-yaw-deg 2 --solvers clique " + settings +
+      " --out " + dir.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "loop.json");
+  nlohmann::json j = r.code == 0 ? nlohmann::json::parse(in) : nlohmann::json::object();
+  fs::remove_all(dir);
+  return j;
+}
+
+}  // namespace
+
 // radish2d's aces log with its own wheel odometry, the README's indoor 2D settings (odometry noise
 // of wheel odometry: 10% of travel, 2 deg / sqrt(m) of yaw, as the pose prior's and the pose
 // graph's sigmas): clique accepts only correct closures, at least one, and its loops lower both
 // the APE against the corrected log and Kuemmerle's relation error of the reference relations.
 TEST(LoopCli, RadishAcesWithItsOdometryClosesOnlyCorrectLoopsAndLowersBothErrors) {
-  const fs::path data = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d";
-  if (!fs::exists(data / "aces.clf")) GTEST_SKIP() << "no " << data << " (../shared/data absent)";
-  const fs::path dir = fs::temp_directory_path() / "vb_loop_aces";
-  fs::remove_all(dir);
-  const auto r = run_cli(
-      "loop --no-plots --quiet --sequence " + (data / "aces.clf").string() +
-      " --odometry log --reference " + (data / "corrected" / "aces-corrected.log").string() +
-      " --relations " + (data / "aces.relations").string() +
-      " --pipeline 2d --cell 0.1 --range 20 --map-length 10 --map-voxel 0.05 --scan-spacing 0.2"
-      " --eps 0.2 --pose-tolerance 1 --odometry-prior --drift-trans 0.1 --drift-yaw-deg 2"
-      " --solvers clique --out " + dir.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  std::ifstream in(dir / "loop.json");
-  const auto j = nlohmann::json::parse(in);
-  const auto& clique = j["summary"][0];
+  const fs::path relations = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d" / "aces.relations";
+  const auto j = radish_loop("aces", "--map-length 10 --odometry-prior --relations " +
+                                         relations.string());
+  if (!j) GTEST_SKIP() << "no radish2d (../shared/data absent)";
+  ASSERT_TRUE(j->contains("summary"));
+  const auto& clique = (*j)["summary"][0];
   EXPECT_GE(clique["tp"].get<int>(), 1) << clique.dump();
   EXPECT_EQ(clique["fp"].get<int>(), 0) << clique.dump();
   EXPECT_LT(clique["ape_with_m"].get<double>(), clique["ape_without_m"].get<double>());
@@ -855,62 +877,40 @@ TEST(LoopCli, RadishAcesWithItsOdometryClosesOnlyCorrectLoopsAndLowersBothErrors
   EXPECT_GT(without["used"].get<int>(), 1200);
   EXPECT_LT(with["translation_m"].get<double>(), without["translation_m"].get<double>());
   EXPECT_LT(with["rotation_deg"].get<double>(), without["rotation_deg"].get<double>());
-  EXPECT_EQ(j["parameters"]["loop"]["relations"], (data / "aces.relations").string());
-  fs::remove_all(dir);
+  EXPECT_EQ((*j)["parameters"]["loop"]["relations"], relations.string());
 }
 
 // The other real 2D log at the same indoor settings (README's row), in CI: its reference is the
 // corrected log, and clique's loops lower the APE against it (24.66 -> 13.67 m when measured), but
 // its precision is not 1 (BENCHMARK.md 31-32: 3 correct, 5 false), so only what holds is asserted.
 TEST(LoopCli, RadishIntelWithItsOdometryLowersTheApeAgainstTheCorrectedLog) {
-  const fs::path data = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d";
-  if (!fs::exists(data / "intel.clf")) GTEST_SKIP() << "no " << data << " (../shared/data absent)";
-  const fs::path dir = fs::temp_directory_path() / "vb_loop_intel";
-  fs::remove_all(dir);
-  const fs::path reference = data / "corrected" / "intel-corrected.log";
-  const auto r = run_cli(
-      "loop --no-plots --quiet --sequence " + (data / "intel.clf").string() +
-      " --odometry log --reference " + reference.string() +
-      " --pipeline 2d --cell 0.1 --range 20 --map-length 10 --map-voxel 0.05 --scan-spacing 0.2"
-      " --eps 0.2 --pose-tolerance 1 --odometry-prior --drift-trans 0.1 --drift-yaw-deg 2"
-      " --solvers clique --out " + dir.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  std::ifstream in(dir / "loop.json");
-  const auto j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["parameters"]["loop"]["sequence_format"], "carmen");
-  EXPECT_EQ(j["parameters"]["loop"]["odometry"], "log");
-  const auto& clique = j["summary"][0];
+  const auto j = radish_loop("intel", "--map-length 10 --odometry-prior");
+  if (!j) GTEST_SKIP() << "no radish2d (../shared/data absent)";
+  ASSERT_TRUE(j->contains("summary"));
+  EXPECT_EQ((*j)["parameters"]["loop"]["sequence_format"], "carmen");
+  EXPECT_EQ((*j)["parameters"]["loop"]["odometry"], "log");
+  const auto& clique = (*j)["summary"][0];
   EXPECT_GE(clique["tp"].get<int>(), 1) << clique.dump();
   EXPECT_GT(clique["ape_without_m"].get<double>(), 10.0) << clique.dump();  // the wheels' drift
   EXPECT_LT(clique["ape_with_m"].get<double>(), 0.8 * clique["ape_without_m"].get<double>())
       << clique.dump();
-  fs::remove_all(dir);
 }
 
 // intel with the loop consistency check (loop/consistency.hpp) over the count rule at 14 inliers and
 // 7 m maps (BENCHMARK.md 33): every accepted closure is correct against the corrected log and they
 // lower the APE. (The same setting accepts only aliases on aces: see there.)
 TEST(LoopCli, RadishIntelWithLoopConsistencyClosesOnlyCorrectLoopsAndLowersTheApe) {
-  const fs::path data = fs::path(VERIFYBENCH_SHARED_DATA) / "radish2d";
-  if (!fs::exists(data / "intel.clf")) GTEST_SKIP() << "no " << data << " (../shared/data absent)";
-  const fs::path dir = fs::temp_directory_path() / "vb_loop_intel_pcm";
-  fs::remove_all(dir);
-  const auto r = run_cli(
-      "loop --no-plots --quiet --sequence " + (data / "intel.clf").string() +
-      " --odometry log --reference " + (data / "corrected" / "intel-corrected.log").string() +
-      " --pipeline 2d --cell 0.1 --range 20 --map-length 7 --map-voxel 0.05 --scan-spacing 0.2"
-      " --eps 0.2 --pose-tolerance 1 --drift-trans 0.1 --drift-yaw-deg 2 --accept count"
-      " --min-inliers 14 --loop-consistency 0.999 --solvers clique --out " + dir.string());
-  ASSERT_EQ(r.code, 0) << r.output;
-  std::ifstream in(dir / "loop.json");
-  const auto j = nlohmann::json::parse(in);
-  const auto& clique = j["summary"][0];
+  const auto j = radish_loop(
+      "intel", "--map-length 7 --accept count --min-inliers 14 --loop-consistency 0.999");
+  if (!j) GTEST_SKIP() << "no radish2d (../shared/data absent)";
+  ASSERT_TRUE(j->contains("summary"));
+  const auto& clique = (*j)["summary"][0];
   EXPECT_GE(clique["tp"].get<int>(), 5) << clique.dump();
   EXPECT_EQ(clique["fp"].get<int>(), 0) << clique.dump();
   EXPECT_LT(clique["ape_with_m"].get<double>(), clique["ape_without_m"].get<double>());
-  EXPECT_EQ(j["parameters"]["loop"]["loop_consistency"], 0.999);
+  EXPECT_EQ((*j)["parameters"]["loop"]["loop_consistency"], 0.999);
   int dropped = 0;
-  for (const auto& row : j["closures"]) {
+  for (const auto& row : (*j)["closures"]) {
     if (row["loop_consistent"] == false) {
       ++dropped;
       EXPECT_FALSE(row["accepted"].get<bool>());
@@ -918,7 +918,6 @@ TEST(LoopCli, RadishIntelWithLoopConsistencyClosesOnlyCorrectLoopsAndLowersTheAp
     }
   }
   EXPECT_GE(dropped, 1);  // it removed what the count rule let through
-  fs::remove_all(dir);
 }
 
 // `loop` offers every front-end option of `extract`, with the same value ranges (one declaration:
