@@ -14,17 +14,6 @@ namespace verifybench {
 
 namespace {
 
-/// Odometry's travel between maps i and j: the anchors' path, map by map.
-double travel(const std::vector<LocalMap>& maps, int i, int j) {
-  double length = 0.0;
-  for (int k = std::min(i, j); k < std::max(i, j); ++k) {
-    length += (maps[k + 1].T_world_map_odometry.translation() -
-               maps[k].T_world_map_odometry.translation())
-                  .norm();
-  }
-  return length;
-}
-
 /// O(i, j) = X_i^-1 X_j of the odometry poses.
 Rigid<3> odometry_between(const std::vector<LocalMap>& maps, int i, int j) {
   return maps[i].T_world_map_odometry.inverse() * maps[j].T_world_map_odometry;
@@ -45,7 +34,8 @@ const std::vector<ParamRow<ConsistencyParams>>& consistency_param_rows() {
       &P::confidence, "loop-consistency", "loop_consistency", "C",
       "after the accept rule and the dense check, keep per solver only the largest set of accepted "
       "closures that pairwise agree through the odometry between their maps (PCM: each pair's "
-      "cycle within the chi-square gate at confidence C, drift-model and loop-edge sigmas); 0 = off",
+      "cycle within the chi-square gate at confidence C, drift-model and loop-edge sigmas); "
+      "0 = off",
       0.0, 0.999999, "a value in [0, 1) (0 = off)")};
   return rows;
 }
@@ -58,7 +48,8 @@ double cycle_d2(const LoopMeasurement& a, const LoopMeasurement& b,
                      b.T_match_query;
   const double theta = Eigen::AngleAxisd(E.rotation()).angle();
   const double t = E.translation().norm();
-  const auto sq = travel(maps, a.query, b.query), sm = travel(maps, a.match, b.match);
+  const double sq = map_travel(maps, a.query, b.query);
+  const double sm = map_travel(maps, a.match, b.match);
   const Eigen::Matrix<double, 6, 1> s_q = odometry_sigma(model.drift, sq);
   const Eigen::Matrix<double, 6, 1> s_m = odometry_sigma(model.drift, sm);
   const double loop_rot = model.loop_sigma_rot_deg * M_PI / 180.0;

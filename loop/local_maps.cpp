@@ -37,6 +37,16 @@ std::vector<std::vector<int>> partition_maps(const std::vector<Rigid<3>>& odomet
   return maps;
 }
 
+double map_travel(const std::vector<LocalMap>& maps, int i, int j) {
+  double length = 0.0;
+  for (int k = std::min(i, j); k < std::max(i, j); ++k) {
+    length += (maps[k + 1].T_world_map_odometry.translation() -
+               maps[k].T_world_map_odometry.translation())
+                  .norm();
+  }
+  return length;
+}
+
 std::uint64_t voxel_key(const Eigen::Vector3d& p, double voxel) {
   constexpr long long kHalf = 1LL << 20;
   std::uint64_t key = 0;

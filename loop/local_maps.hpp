@@ -47,6 +47,9 @@ LocalMap build_local_map(int index, const std::vector<int>& frames,
                          const std::vector<Rigid<3>>& odometry, const std::vector<Rigid<3>>& truth,
                          const ScanSource& scans, const LocalMapParams& params);
 
+/// Odometry's travel between maps i and j (either order): the path of their anchors, map by map.
+double map_travel(const std::vector<LocalMap>& maps, int i, int j);
+
 /// Key of the cell of `p` at `voxel` (21 bits an axis, offset; beyond +-2^20 cells clamped).
 std::uint64_t voxel_key(const Eigen::Vector3d& p, double voxel);
 

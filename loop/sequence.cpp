@@ -30,13 +30,8 @@ void attach_odometry_prior(Dump& dump, const std::vector<LocalMap>& maps, const 
                            const DriftParams& drift) {
   const Rigid<3> T0 =
       maps[c.match].T_world_map_odometry.inverse() * maps[c.query].T_world_map_odometry;
-  double travel = 0.0;
-  for (int k = std::min(c.query, c.match); k < std::max(c.query, c.match); ++k) {
-    travel += (maps[k + 1].T_world_map_odometry.translation() -
-               maps[k].T_world_map_odometry.translation())
-                  .norm();
-  }
-  const Eigen::Matrix<double, 6, 1> sigma = odometry_sigma(drift, travel);
+  const Eigen::Matrix<double, 6, 1> sigma =
+      odometry_sigma(drift, map_travel(maps, c.query, c.match));
   std::visit(
       [&](auto& set) {
         constexpr int Dim = std::decay_t<decltype(set.corr.source)>::RowsAtCompileTime;
@@ -400,7 +395,9 @@ void check_consistency(const LoopConfig& config, const MapsAndFeatures& mf, Loop
     }
     if (accepted.empty()) continue;
     std::vector<LoopMeasurement> loops;
-    for (const ClosureRow* row : accepted) loops.push_back({row->query, row->match, row->T_estimate});
+    for (const ClosureRow* row : accepted) {
+      loops.push_back({row->query, row->match, row->T_estimate});
+    }
     const ConsistencyModel model{config.drift, config.loop_sigma_trans, config.loop_sigma_rot_deg,
                                  accepted.front()->record.dim};
     const ConsistentSet set = consistent_set(loops, mf.maps, model, config.consistency,
