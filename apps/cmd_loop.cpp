@@ -103,6 +103,7 @@ void add_loop_options(Options& o, LoopLine& l, LoopConfig& c, cli::SolverOptions
             "poses: a TUM or KITTI file, matched to the scans by stamp, else by index");
   cli::add_rows(o, gicp_param_rows(), c.gicp);
   cli::add_rows(o, drift_param_rows(), c.drift);
+  cli::add_rows(o, odometry_calibration_param_rows(), c.calibration);
   o.group("scans, maps, retrieval, ground truth, pose graph, dense check, loop consistency");
   cli::add_rows(o, loop_param_rows(), c);
   cli::add_rows(o, local_map_param_rows(), c.maps);
@@ -299,6 +300,7 @@ nlohmann::json loop_parameters(const LoopLine& l, const LoopConfig& c,
   loop.update(cli::rows_json(local_map_param_rows(), c.maps));
   loop.update(cli::rows_json(retrieval_param_rows(), c.retrieval));
   loop.update(cli::rows_json(consistency_param_rows(), c.consistency));
+  loop.update(cli::rows_json(odometry_calibration_param_rows(), c.calibration));
   loop["dense_check"]["icp_max_iterations"] = c.dense.icp.max_iterations;
   loop["gicp"]["max_iterations"] = c.gicp.max_iterations;
   if (!c.source) {

@@ -83,7 +83,7 @@ void optimise_pose_graphs(const LoopConfig& config, const std::vector<LocalMap>&
     e.from = k;
     e.to = k + 1;
     e.T_from_to = anchors_odo[k].inverse() * anchors_odo[k + 1];
-    e.sigma = odometry_sigma(config.drift, e.T_from_to.translation().norm());
+    e.sigma = odometry_sigma(run.drift, e.T_from_to.translation().norm());
     odometry_edges.push_back(e);
   }
   // Each scan's pose from its map's anchor: T_world_anchor * (odometry anchor -> scan).

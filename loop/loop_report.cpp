@@ -37,6 +37,15 @@ json relation_json(const LoopConfig& config, const RelationError& e) {
           {"rotation_sq_deg2", number(e.rotation_sq)}};
 }
 
+/// --odometry-calibration's estimate; null when it did not run.
+json calibration_json(const OdometryCalibration& c) {
+  if (!c.ran) return nullptr;
+  return {{"yaw_rate_deg_per_m", c.yaw_rate_deg_per_m}, {"pairs", c.pairs},
+          {"matched", c.matched},  {"kept", c.kept},
+          {"travel_m", c.travel_m}, {"residual_deg_rms", c.residual_deg_rms},
+          {"yaw_sigma_deg_per_sqrt_m", c.yaw_sigma_deg_per_sqrt_m}};
+}
+
 json score_json(const ClosureScore& s) {
   return {{"tp", s.tp},
           {"fp", s.fp},
@@ -194,6 +203,7 @@ json loop_report(const LoopConfig& config, const LoopRun& run, const json& conte
           {"parameters", parameters},
           {"seconds", run.seconds},
           {"world", run.world},
+          {"odometry_calibration", calibration_json(run.calibration)},
           {"maps", maps},
           {"true_closures", truths},
           {"candidates", candidates},
@@ -242,6 +252,15 @@ std::string loop_markdown(const LoopConfig& config, const LoopRun& run) {
       md << "| " << s.solver << " | " << cell(run.relations_without) << " | "
          << cell(s.relations_with) << " | " << cell(s.relations_with_robust) << " |\n";
     }
+  }
+  if (run.calibration.ran) {
+    const OdometryCalibration& c = run.calibration;
+    md << "\nOdometry calibration: " << fixed(c.yaw_rate_deg_per_m, 3)
+       << " deg per metre of heading the odometry missed, added back (ICP matched " << c.matched << " of "
+       << c.pairs << " consecutive scan pairs, " << c.kept << " kept over " << fixed(c.travel_m, 1)
+       << " m; residual " << fixed(c.residual_deg_rms, 2) << " deg rms per pair, "
+       << fixed(c.yaw_sigma_deg_per_sqrt_m, 2)
+       << " deg / sqrt(m): the drift model's yaw sigma in this run)\n";
   }
   md << "\nWall time: " << fixed(run.seconds.count("total_s") ? run.seconds.at("total_s") : 0, 1)
      << " s\n";

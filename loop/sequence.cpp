@@ -87,6 +87,13 @@ void LoopConfig::validate() const {
   maps.validate();
   retrieval.validate();
   drift.validate();
+  calibration.validate();
+  if (calibration.enabled && !(source && source->info().planar)) {
+    throw std::invalid_argument(
+        "--odometry-calibration needs a 2D laser recording (a CARMEN log: planar scans); " +
+        (source ? "the " + source->info().format + " sequence " + source->info().dir + " is not"
+                : std::string("the simulated world is 3D")));
+  }
   dense.validate();
   consistency.validate();
   params.validate();
@@ -197,14 +204,20 @@ Scans open_scans(const LoopConfig& config, LoopRun& run) {
 }
 
 /// Odometry: the kind config.odometry names (loop/odometry.hpp: drift, gicp, poses, log), for
-/// every frame; run.truth and run.odometry keep the frames used.
+/// every frame, then its calibration from the scans when on (loop/odometry_calibration.hpp); run.truth
+/// and run.odometry keep the frames used.
 Trajectory run_odometry(const LoopConfig& config, const ScanSource& scans, const Progress& report,
                         LoopRun& run) {
   StopWatch clock;
   const OdometryInfo& kind = find_odometry(config.odometry);
-  const Trajectory odometry_all =
+  Trajectory odometry_all =
       kind.run({config, run.frames, scans,
                 [&](long long done, long long total) { report("odometry", done, total); }});
+  run.drift = config.drift;
+  if (config.calibration.enabled) {
+    run.calibration = calibrate_odometry(run.frames, scans, config.calibration, odometry_all);
+    run.drift.yaw_deg = std::max(run.calibration.yaw_sigma_deg_per_sqrt_m, 1e-3);
+  }
   for (int f : run.frames) {
     run.truth.push_back(config.truth[f]);
     run.odometry.push_back(odometry_all[f]);
@@ -280,13 +293,14 @@ void truth_and_retrieval(const LoopConfig& config, const MapsAndFeatures& mf, Lo
 
 /// Verification, one pair: the matcher's correspondences of its features (seeded by the pair), the
 /// ground truth marked on them, and odometry's prior when --odometry-prior.
-Dump pair_correspondences(const LoopConfig& config, const MapsAndFeatures& mf, const Candidate& c,
+Dump pair_correspondences(const LoopConfig& config, const DriftParams& drift,
+                          const MapsAndFeatures& mf, const Candidate& c,
                           const Rigid<3>& T_truth) {
   ExtractParams ep = config.extract;
   ep.seed = derive_seed(
       config.seed, {4, static_cast<std::uint64_t>(c.query), static_cast<std::uint64_t>(c.match)});
   Dump dump = match_features(mf.features[c.query], mf.features[c.match], T_truth, ep);
-  if (config.odometry_prior) attach_odometry_prior(dump, mf.maps, c, config.drift);
+  if (config.odometry_prior) attach_odometry_prior(dump, mf.maps, c, drift);
   return dump;
 }
 
@@ -356,7 +370,7 @@ void verify_candidates(const LoopConfig& config, const MapsAndFeatures& mf, cons
     const LocalMap& q = mf.maps[c.query];
     const LocalMap& m = mf.maps[c.match];
     const Rigid<3> T_truth = m.T_world_map_truth.inverse() * q.T_world_map_truth;
-    Dump dump = pair_correspondences(config, mf, c, T_truth);
+    Dump dump = pair_correspondences(config, run.drift, mf, c, T_truth);
     const double overlap = overlap_ratio(q.occupancy, m.occupancy);
     bool is_true = false;
     for (const TrueClosure& t : run.true_closures) {
@@ -398,7 +412,7 @@ void check_consistency(const LoopConfig& config, const MapsAndFeatures& mf, Loop
     for (const ClosureRow* row : accepted) {
       loops.push_back({row->query, row->match, row->T_estimate});
     }
-    const ConsistencyModel model{config.drift, config.loop_sigma_trans, config.loop_sigma_rot_deg,
+    const ConsistencyModel model{run.drift, config.loop_sigma_trans, config.loop_sigma_rot_deg,
                                  accepted.front()->record.dim};
     const ConsistentSet set = consistent_set(loops, mf.maps, model, config.consistency,
                                              config.params.time_limit_s);

@@ -43,6 +43,7 @@
 #include "loop/dense_check.hpp"
 #include "loop/relations.hpp"
 #include "loop/local_maps.hpp"
+#include "loop/odometry_calibration.hpp"
 #include "loop/pose_graph.hpp"
 #include "loop/retrieval.hpp"
 #include "loop/sources/source.hpp"
@@ -81,6 +82,9 @@ struct LoopConfig {
   std::string odometry = "drift";
   DriftParams drift;
   ScanOdometryParams gicp;
+  /// 2D laser logs: the odometry's constant heading drift per metre taken out before the maps
+  /// (loop/odometry_calibration.hpp; off by default).
+  OdometryCalibrationParams calibration;
   double scan_spacing = 2.0;  ///< [m] travel between the scans used
   LocalMapParams maps;
   RetrievalParams retrieval;
@@ -179,6 +183,10 @@ struct LoopRun {
   std::vector<SolverSummary> summary;
   ApeStats ape_without;
   RelationError relations_without;  ///< the odometry's, with config.relations only
+  OdometryCalibration calibration;  ///< ran = false unless --odometry-calibration
+  /// The drift model the stages weigh odometry by (pose prior, consistency, pose graph):
+  /// config.drift, its yaw sigma the calibration's estimate where that ran.
+  DriftParams drift;
   std::map<std::string, double> seconds;  ///< per stage
   std::map<std::string, int> world;       ///< the simulated world's counts
 };
