@@ -60,6 +60,8 @@ int cmd_list(const std::vector<std::string>& args) {
                 cli::rows_markdown(consistency_param_rows(), loop.consistency).c_str());
     std::printf("| **odometry: drift (also the pose prior's and the pose graph's sigmas)** | | |\n%s",
                 cli::rows_markdown(drift_param_rows(), loop.drift).c_str());
+    std::printf("| **odometry: calibration from the scans (2D laser logs)** | | |\n%s",
+                cli::rows_markdown(odometry_calibration_param_rows(), loop.calibration).c_str());
     std::printf("| **odometry: gicp** | | |\n%s",
                 cli::rows_markdown(gicp_param_rows(), loop.gicp).c_str());
     std::printf("| **simulated LiDAR and world (without --sequence)** | | |\n%s%s",

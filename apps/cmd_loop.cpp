@@ -303,6 +303,7 @@ nlohmann::json loop_parameters(const LoopLine& l, const LoopConfig& c,
   loop.update(cli::rows_json(odometry_calibration_param_rows(), c.calibration));
   loop["dense_check"]["icp_max_iterations"] = c.dense.icp.max_iterations;
   loop["gicp"]["max_iterations"] = c.gicp.max_iterations;
+  loop["calibration_max_iterations"] = c.calibration.max_iterations;
   if (!c.source) {
     loop["lidar"] = cli::rows_json(lidar_param_rows(), c.lidar);
     loop["lidar"].update({{"fov_up_deg", c.lidar.fov_up_deg},

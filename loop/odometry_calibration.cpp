@@ -15,6 +15,7 @@ namespace verifybench {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kMinPairs = 10;  ///< matched and kept pairs a rate needs
 
 double wrap_angle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
@@ -75,20 +76,24 @@ class PlanarGrid {
 
  private:
   std::int64_t cell_of(double v) const { return static_cast<std::int64_t>(std::floor(v / cell_)); }
-  static std::int64_t key(std::int64_t x, std::int64_t y) { return x * 73856093LL ^ y * 19349663LL; }
+  static std::int64_t key(std::int64_t x, std::int64_t y) {
+    return static_cast<std::int64_t>((static_cast<std::uint64_t>(x) << 32) ^
+                                     static_cast<std::uint32_t>(y));
+  }
   const std::vector<Eigen::Vector2d>& points_;
   double cell_;
   std::unordered_map<std::int64_t, std::vector<int>> cells_;
 };
 
-std::vector<Eigen::Vector2d> planar_points(const std::vector<Eigen::Vector3f>& cloud, int frame) {
+std::vector<Eigen::Vector2d> planar_points(const std::vector<Eigen::Vector3f>& cloud,
+                                           const std::string& which) {
   std::vector<Eigen::Vector2d> out;
   out.reserve(cloud.size());
   for (const Eigen::Vector3f& p : cloud) {
     if (!(std::abs(p.z()) <= 1e-6f)) {
       throw std::invalid_argument(
-          "--odometry-calibration needs planar scans (a 2D laser log); frame " +
-          std::to_string(frame) + " has a point at z = " + std::to_string(p.z()));
+          "--odometry-calibration needs planar scans (a 2D laser log); " + which +
+          " has a point at z = " + std::to_string(p.z()));
     }
     out.emplace_back(p.x(), p.y());
   }
@@ -106,8 +111,8 @@ double median(std::vector<double> v) {
 }
 
 /// Each target point's line normal: the direction of least spread of the target points within
-/// `radius` (at least 3 of them, spread along the line at least 10 times across it); zero where
-/// the neighbourhood is no line.
+/// `radius` (at least 3 of them, their variance along the line at least 10 times that across
+/// it); zero where the neighbourhood is no line.
 std::vector<Eigen::Vector2d> line_normals(const std::vector<Eigen::Vector2d>& target,
                                           double radius) {
   std::vector<Eigen::Vector2d> normals(target.size(), Eigen::Vector2d::Zero());
@@ -160,8 +165,10 @@ PlanarIcp icp_2d(const std::vector<Eigen::Vector2d>& source,
       H += J * J.transpose();
       g += J * r;
     }
-    if (paired < 3 || H.determinant() <= 1e-12) return out;
-    const Eigen::Vector3d delta = -H.ldlt().solve(g);
+    if (paired < 3 || !(H.trace() > 0.0)) return out;
+    // A faint damping keeps a direction the scene does not pin (along a corridor) where it is.
+    const Eigen::Vector3d delta =
+        -(H + 1e-6 * H.trace() * Eigen::Matrix3d::Identity()).ldlt().solve(g);
     if (!delta.allFinite()) return out;
     Rigid<2> step = Rigid<2>::Identity();
     step.linear() = Eigen::Rotation2Dd(delta(0)).toRotationMatrix();
@@ -215,7 +222,8 @@ PlanarIcp planar_icp(const std::vector<Eigen::Vector3f>& source,
                      const std::vector<Eigen::Vector3f>& target, const Rigid<2>& T0,
                      const OdometryCalibrationParams& params) {
   params.validate();
-  return icp_2d(planar_points(source, -1), planar_points(target, -1), T0, params);
+  return icp_2d(planar_points(source, "the source scan"), planar_points(target, "the target scan"),
+                T0, params);
 }
 
 OdometryCalibration calibrate_odometry(const std::vector<int>& frames, const ScanSource& scans,
@@ -224,18 +232,19 @@ OdometryCalibration calibrate_odometry(const std::vector<int>& frames, const Sca
   params.validate();
   OdometryCalibration cal;
   cal.ran = true;
-  if (frames.size() < 2) return cal;
   // Steps 1-2: each consecutive pair's heading error and travel.
   std::vector<Rigid<3>> steps;  // O_i, from the odometry as it came
   std::vector<double> travel, error, matched_travel;
-  std::vector<Eigen::Vector2d> target = planar_points(scans(frames[0]), frames[0]);
+  auto frame_name = [](int f) { return "frame " + std::to_string(f); };
+  std::vector<Eigen::Vector2d> target = planar_points(scans(frames[0]), frame_name(frames[0]));
   for (std::size_t k = 0; k + 1 < frames.size(); ++k) {
     const Rigid<3> O = odometry.at(frames[k]).inverse() * odometry.at(frames[k + 1]);
     steps.push_back(O);
     const Rigid<2> O2 = planar_part(O);
     const double L = O2.translation().norm();
     travel.push_back(L);
-    std::vector<Eigen::Vector2d> source = planar_points(scans(frames[k + 1]), frames[k + 1]);
+    std::vector<Eigen::Vector2d> source =
+        planar_points(scans(frames[k + 1]), frame_name(frames[k + 1]));
     if (L > 1e-3) {
       ++cal.pairs;
       const PlanarIcp icp = icp_2d(source, target, O2, params);
@@ -247,11 +256,16 @@ OdometryCalibration calibrate_odometry(const std::vector<int>& frames, const Sca
     target = std::move(source);
   }
   cal.matched = static_cast<int>(error.size());
-  if (cal.matched < 10) {
-    throw std::invalid_argument("--odometry-calibration: ICP matched " +
-                                std::to_string(cal.matched) + " of " + std::to_string(cal.pairs) +
-                                " consecutive scan pairs; at least 10 are needed");
-  }
+  auto too_few = [&](int count, const std::string& what) {
+    if (count >= kMinPairs) return;
+    throw std::invalid_argument(
+        "--odometry-calibration: " + what + " " + std::to_string(count) + " of " +
+        std::to_string(cal.pairs) + " consecutive scan pairs; at least " +
+        std::to_string(kMinPairs) +
+        " are needed (more scans, or a larger --calibration-max-distance or smaller "
+        "--calibration-min-share)");
+  };
+  too_few(cal.matched, "ICP matched");
   // Step 3: b0 from the median rate, the MAD trim, then b = sum e / sum L over the rest.
   std::vector<double> rate(error.size());
   for (std::size_t i = 0; i < error.size(); ++i) rate[i] = error[i] / matched_travel[i];
@@ -270,7 +284,8 @@ OdometryCalibration calibrate_odometry(const std::vector<int>& frames, const Sca
     sum_e += error[i];
     sum_l += matched_travel[i];
   }
-  const double b = sum_l > 0.0 ? sum_e / sum_l : 0.0;
+  too_few(static_cast<int>(kept.size()), "the trim kept");
+  const double b = sum_e / sum_l;
   double sq = 0.0;
   for (std::size_t i : kept) sq += std::pow(error[i] - b * matched_travel[i], 2);
   cal.kept = static_cast<int>(kept.size());

@@ -5,7 +5,7 @@
 // grows linearly with travel, which no random walk of the drift model (odometry_sigma()) describes,
 // so neither the pose prior's gate nor the loop consistency check can be set for it. A planar
 // recording's consecutive scans measure that rate:
-//   1. each pair of consecutive scans used (i, i+1) is registered by point-to-point ICP in SE(2)
+//   1. each pair of consecutive scans used (i, i+1) is registered by point-to-line ICP in SE(2)
 //      from odometry's motion O_i (scan i+1 into scan i), giving the scan-matched motion Z_i;
 //   2. the heading the step's odometry missed is e_i = yaw(Z_i) - yaw(O_i), over its travel
 //      L_i = |t(O_i)|;
@@ -17,6 +17,7 @@
 //   5. what is left, r_i = e_i - b L_i, is the heading's random walk: its sigma per sqrt(metre),
 //      q = sqrt(sum r_i^2 / sum L_i) over the kept pairs, replaces the drift model's yaw sigma
 //      (--drift-yaw-deg) wherever the loop weighs odometry (pose prior, consistency, pose graph).
+//      It holds ICP's own heading error per pair too, so it grows as --scan-spacing shrinks.
 // Off by default; 2D laser recordings only (the scans must be planar: carmen).
 #include <vector>
 
@@ -52,7 +53,7 @@ struct OdometryCalibration {
   double yaw_sigma_deg_per_sqrt_m = 0.0;
 };
 
-/// Point-to-point ICP in SE(2) of `source` into `target` (x-y of the points) from `T0`; the result
+/// Point-to-line ICP in SE(2) of `source` into `target` (x-y of the points) from `T0`; the result
 /// and the share of source points paired at the end. Exposed for the tests.
 struct PlanarIcp {
   Rigid<2> T = Rigid<2>::Identity();
@@ -65,7 +66,7 @@ PlanarIcp planar_icp(const std::vector<Eigen::Vector3f>& source,
 
 /// Calibrates `odometry` (T_world_sensor per frame; only `frames` are read and rewritten) from the
 /// scans of `frames` as above. Throws std::invalid_argument when a scan is not planar (a point
-/// off z = 0, naming the frame) or fewer than 10 pairs matched (naming the counts).
+/// off z = 0, naming the frame) or fewer than 10 pairs are matched or kept (naming the counts).
 OdometryCalibration calibrate_odometry(const std::vector<int>& frames, const ScanSource& scans,
                                        const OdometryCalibrationParams& params,
                                        Trajectory& odometry);

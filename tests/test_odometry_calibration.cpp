@@ -119,36 +119,52 @@ TEST(OdometryCalibration, RecoversAKnownHeadingRateAndTakesTheDriftOut) {
   const auto walls = room();
   const auto truth = lap();
   // Odometry that misses 2.5 deg of heading per metre (it turns right of the truth), plus a
-  // seeded random walk of 0.3 deg per step.
-  const double missed = 2.5 * kDeg;
+  // seeded random walk of 0.1 deg per step (Box-Muller on mt19937_64: the same draws on every
+  // standard library), and six wheel slips of 8 deg that the trim must leave out (kept in, they
+  // would move the rate by 6 * 8 deg / 48.5 m = 1 deg / m).
+  const double missed = 2.5 * kDeg, step_sigma = 0.1 * kDeg;
   std::mt19937_64 rng(7);
-  std::normal_distribution<double> noise(0.0, 0.3 * kDeg);
+  auto gaussian = [&rng] {
+    const double u1 = (static_cast<double>(rng() >> 11) + 1.0) / 9007199254740993.0;
+    const double u2 = static_cast<double>(rng() >> 11) / 9007199254740992.0;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  };
   vb::Trajectory odometry{lift(truth[0])};
-  double travel = 0;
+  double travel = 0, noise_sq = 0;
   for (std::size_t i = 1; i < truth.size(); ++i) {
     const vb::Rigid<2> step = truth[i - 1].inverse() * truth[i];
     const double L = step.translation().norm();
     travel += L;
-    const vb::Rigid<2> wrong = step * se2(0, 0, (-missed * L + noise(rng)) / kDeg);
+    const double noise = step_sigma * gaussian();
+    noise_sq += noise * noise;
+    const double slip = i % 20 == 10 ? 8.0 * kDeg : 0.0;
+    const vb::Rigid<2> wrong = step * se2(0, 0, (-missed * L + noise + slip) / kDeg);
     odometry.push_back(odometry.back() * lift(wrong));
   }
   std::vector<int> frames(truth.size());
   for (std::size_t i = 0; i < frames.size(); ++i) frames[i] = static_cast<int>(i);
   const vb::ScanSource scans = [&](int f) { return scan_at(truth[f], walls); };
-  const double before = std::abs(yaw_of(odometry.back()) - yaw_of(lift(truth.back())));
-  ASSERT_GT(before, 30 * kDeg);  // the drift the calibration must take out (~ 2.5 * 55 m)
+  const double before =
+      std::abs(std::remainder(yaw_of(odometry.back()) - yaw_of(lift(truth.back())), 2 * M_PI));
+  ASSERT_GT(before, 30 * kDeg);  // the drift the calibration must take out (2.5 * 48.5 m - slips)
 
   const vb::OdometryCalibration cal = vb::calibrate_odometry(frames, scans, {}, odometry);
   EXPECT_TRUE(cal.ran);
   EXPECT_EQ(cal.pairs, static_cast<int>(truth.size()) - 1);
   EXPECT_GT(cal.matched, cal.pairs * 9 / 10);
-  EXPECT_GT(cal.kept, cal.matched / 2);
+  EXPECT_LE(cal.kept, cal.matched - 6);  // the slips are out
+  EXPECT_GT(cal.kept, cal.matched * 3 / 4);
+  // The estimator's own spread: 0.1 deg * sqrt(127 steps) / 48.5 m = 0.023 deg / m.
   EXPECT_NEAR(cal.yaw_rate_deg_per_m, 2.5, 0.1) << "kept " << cal.kept << " of " << cal.matched;
-  EXPECT_NEAR(cal.travel_m, travel, 0.5 * travel);
-  // The heading the calibrated odometry ends with is within what the random walk leaves.
-  const double wrap = std::remainder(yaw_of(odometry.back()) - yaw_of(lift(truth.back())), 2 * M_PI);
-  EXPECT_LT(std::abs(wrap), 0.15 * kDeg * travel + 3.0 * 0.3 * kDeg * std::sqrt(truth.size()));
-  EXPECT_LT(std::abs(wrap), before / 5);
+  EXPECT_NEAR(cal.travel_m, travel, 0.15 * travel);  // the slips' steps and no others left out
+  // The noise left per sqrt(m): sqrt(sum noise^2 / travel), ICP's own error on top.
+  const double q = std::sqrt(noise_sq / travel) / kDeg;
+  EXPECT_GT(cal.yaw_sigma_deg_per_sqrt_m, 0.7 * q) << q;
+  EXPECT_LT(cal.yaw_sigma_deg_per_sqrt_m, 2.0 * q) << q;
+  // The heading the calibrated odometry ends with: the slips and the random walk, no drift.
+  const double end = std::remainder(yaw_of(odometry.back()) - yaw_of(lift(truth.back())), 2 * M_PI);
+  EXPECT_LT(std::abs(end - 6 * 8.0 * kDeg), 0.1 * kDeg * travel + 4.0 * std::sqrt(noise_sq))
+      << end / kDeg;
 }
 
 TEST(OdometryCalibration, RefusesScansOffThePlaneAndTooFewMatches) {
