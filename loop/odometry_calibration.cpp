@@ -10,6 +10,8 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
+#include "frontend/extract.hpp"
+
 namespace verifybench {
 
 namespace {
@@ -20,14 +22,6 @@ constexpr int kMinPairs = 10;  ///< matched and kept pairs a rate needs
 double wrap_angle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 double planar_yaw(const Eigen::Matrix2d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
-/// The planar part of a T_a_b whose rotation is about z: yaw and (x, y).
-Rigid<2> planar_part(const Rigid<3>& T) {
-  Rigid<2> P = Rigid<2>::Identity();
-  P.linear() = Eigen::Rotation2Dd(std::atan2(T.linear()(1, 0), T.linear()(0, 0))).toRotationMatrix();
-  P.translation() = T.translation().head<2>();
-  return P;
-}
 
 /// Target points hashed by cell of side `cell`: nearest neighbour within `cell` by the 3 x 3 cells
 /// around a query.
@@ -240,7 +234,7 @@ OdometryCalibration calibrate_odometry(const std::vector<int>& frames, const Sca
   for (std::size_t k = 0; k + 1 < frames.size(); ++k) {
     const Rigid<3> O = odometry.at(frames[k]).inverse() * odometry.at(frames[k + 1]);
     steps.push_back(O);
-    const Rigid<2> O2 = planar_part(O);
+    const Rigid<2> O2 = planar(O);
     const double L = O2.translation().norm();
     travel.push_back(L);
     std::vector<Eigen::Vector2d> source =
