@@ -32,7 +32,13 @@ std::vector<Row> make_rows() {
       field_row(&P::prior_gate, "prior-gate", "prior_gate", "C",
                 "pvalue rule, sets with a pose prior: accept only motions inside the prior's "
                 "chi-square gate at confidence C (0 = no gate)",
-                0.0, 0.999999999, "a value in [0, 1) (0 = no gate)")};
+                0.0, 0.999999999, "a value in [0, 1) (0 = no gate)"),
+      field_row(&P::runner_up_alpha, "runner-up-alpha", "runner_up_alpha", "A",
+                "pvalue rule: reject a pair whose runner-up motion (the same solver on the "
+                "correspondences the accepted motion leaves unexplained) has p < A under the "
+                "pair's null and an excess over the null's location at least 0.4 of the pair's: a "
+                "rigid alias (0 = no runner-up test)",
+                0.0, 0.999999, "a value in [0, 1) (0 = no runner-up test)")};
 }
 
 }  // namespace

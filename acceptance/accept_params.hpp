@@ -22,6 +22,11 @@ struct AcceptParams {
   /// pvalue rule, sets with a pose prior: accept only a motion inside the prior's chi-square gate
   /// at this confidence (prior_gate.hpp), in [0, 1); 0 = no gate.
   double prior_gate = 0.999;
+  /// pvalue rule: reject an accepted pair whose runner-up motion (the same solver on what the
+  /// accepted motion leaves unexplained, runner_up.hpp) has p < this under the pair's null and
+  /// comparable to the pair's own: a rigid alias; 0 = no runner-up test (the default: on real
+  /// structured scenes true closures have such runner-ups too, BENCHMARK.md section 36).
+  double runner_up_alpha = 0.0;
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;

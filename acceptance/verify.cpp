@@ -23,6 +23,13 @@ Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
           calibrate(solver, corr, params, accept,
                                 static_cast<int>(v.result.inliers.size()), budget);
       decide_calibrated(v.result, corr, *v.calibration, accept);
+      if (v.result.accepted && accept.runner_up_alpha > 0.0) {
+        v.runner_up = runner_up(solver, corr, v.result, params, v.calibration->null, accept, budget);
+        if (v.runner_up && v.runner_up->ambiguous) {
+          v.result.accepted = false;
+          if (v.result.status == Status::ok) v.result.status = Status::rejected;
+        }
+      }
     } catch (const std::exception& e) {
       v.calibration.reset();
       v.result.status = Status::error;

@@ -266,6 +266,10 @@ void loop_config(const Options& o, const LoopLine& l, LoopConfig& c, cli::Solver
   c.threads = c.params.threads;
   c.params.threads = 1;  // maps are built in parallel; each solve on one thread
   c.extract.label_threshold = c.params.inlier_threshold;
+  // The report's parameters hold the dense check's threshold in force, not "the rule's default".
+  if (c.dense.min_overlap == DenseCheckParams::kRuleDefault) {
+    c.dense.min_overlap = c.dense.min_overlap_for(c.accept.rule);
+  }
   try {
     c.validate();
   } catch (const std::invalid_argument& e) {

@@ -58,6 +58,12 @@ TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_n
   r.distinct_inliers = geometry.distinct;
   r.lever_arm = geometry.lever_arm;
   if (v.prior_d2) r.prior_d2 = *v.prior_d2;
+  if (const auto& u = v.runner_up) {
+    r.runner_up = u->score;
+    r.runner_up_p = u->p_value;
+    r.runner_up_separation = u->separation;
+    r.runner_up_ambiguous = u->ambiguous;
+  }
 
   if (!set.truth.labels.empty()) {
     const InlierScores s = inlier_scores(result.inliers, set.truth.labels);

@@ -10,9 +10,9 @@
 namespace verifybench {
 
 void DenseCheckParams::validate() const {
-  if (!(min_overlap >= 0.0 && min_overlap < 1.0)) {
-    throw std::invalid_argument("dense check: min_overlap must be in [0, 1), got " +
-                                std::to_string(min_overlap));
+  if (!(min_overlap == kRuleDefault || (min_overlap >= 0.0 && min_overlap < 1.0))) {
+    throw std::invalid_argument("dense check: min_overlap must be in [0, 1) or -1 (the rule's "
+                                "default), got " + std::to_string(min_overlap));
   }
   if (!(cell > 0.0) || !std::isfinite(cell)) {
     throw std::invalid_argument("dense check: cell must be positive, got " + std::to_string(cell));
@@ -115,10 +115,11 @@ const std::vector<ParamRow<DenseCheckParams>>& dense_check_param_rows() {
   };
   static const std::vector<ParamRow<P>> rows = {
       field_row(&P::min_overlap, "dense-overlap", "min_overlap", "F",
-                "dense check after the accept rule: ICP from the fitted motion, then accept only "
-                "when the maps' occupied cells overlap by more than F of the smaller map (0 = off, "
-                "the paper's setting)",
-                0.0, 0.999, "a value in [0, 0.999]"),
+                "dense check of the pairs the accept rule accepted: ICP from the fitted motion, "
+                "then accept only when the maps' occupied cells overlap by more than F of the "
+                "smaller map (0 = off, the paper's setting; -1 = the rule's default: 0.56 under "
+                "--accept pvalue, off under count)",
+                -1.0, 0.999, "a value in [0, 0.999], or -1 (the rule's default)"),
       field_row(&P::cell, "dense-cell", "cell_m", "M", "dense check: overlap cell size", 1e-3, 1e3,
                 "a value in [0.001, 1000]"),
       nested(&RefineParams::voxel, "dense-icp-voxel", "icp_voxel_m",

@@ -330,18 +330,21 @@ void solve_pair(Solver& solver, const std::string& name, Dump& dump, bool is_tru
       dump.set);
 }
 
-/// Verification, after the accept rule: the dense check (loop/dense_check.hpp, when on) may
-/// overrule it; the solver's errors against the truth; the motion the loop goes on with; and
-/// whether the closure is correct (a true closure within pose_tolerance).
+/// Verification, after the accept rule: the dense check (loop/dense_check.hpp, when on) of a
+/// pair the rule accepted may overrule it (a rejected pair is not refined: its ICP would cost a
+/// map registration per solver and candidate and decide nothing); the solver's errors against the
+/// truth; the motion the loop goes on with; and whether the closure is correct (a true closure
+/// within pose_tolerance).
 void judge_row(const LoopConfig& config, const LocalMap& q, const LocalMap& m, bool is_true,
                ClosureRow& row) {
   row.rule_accepted = row.record.accepted;
-  if (config.dense.min_overlap > 0.0 && !row.record.T_target_source.empty()) {
+  const double min_overlap = config.dense.min_overlap_for(config.accept.rule);
+  if (min_overlap > 0.0 && row.record.accepted && !row.record.T_target_source.empty()) {
     row.dense = dense_check(q, m, row.T_estimate, config.dense);
-    if (row.record.accepted && !(row.dense.overlap > config.dense.min_overlap)) {
+    if (!(row.dense.overlap > min_overlap)) {
       row.record.accepted = false;
       row.record.message = "dense check: overlap " + std::to_string(row.dense.overlap) +
-                           " after ICP, not above " + std::to_string(config.dense.min_overlap);
+                           " after ICP, not above " + std::to_string(min_overlap);
     }
   }
   row.translation_error = (row.T_estimate.translation() - row.T_truth.translation()).norm();

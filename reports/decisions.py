@@ -18,7 +18,9 @@ calibration). A pair counts as registered by its motion alone, accepted or not.
 
 --rows prints one line per (dump, solver): expected, inliers, the null's mean and threshold,
 p-value, its range, d^2 of the fitted motion under the set's pose prior (`prior_d2`; "-" without
-one; the calibrated rule rejects beyond the prior gate) and both decisions. `uncertain` counts the calibrated decisions whose p range
+one; the calibrated rule rejects beyond the prior gate), the runner-up test's score and p where
+it ran (`--runner-up-alpha`; "(alias)" where it rejected the pair) and both decisions. The curve
+over alpha keeps a pair the runner-up test rejected rejected at every alpha. `uncertain` counts the calibrated decisions whose p range
 (the p that the null's draws cannot tell apart) holds alpha: other draws may reverse them. --plot draws ROC and precision-recall curves per solver: the
 calibrated rule over alpha (a sweep of the p-value threshold) and the count rule over K.
 """
@@ -68,6 +70,15 @@ def load_rows(paths):
             r["_alpha"] = alpha
             rows.append(r)
     return rows, errors, alphas
+
+
+def runner_up_text(row):
+    """The runner-up test's row cell: its score and p, "(alias)" where it rejected the pair; "-"
+    where it did not run."""
+    if row.get("runner_up") is None:
+        return "-"
+    alias = " (alias)" if row.get("runner_up_ambiguous") else ""
+    return f"{row['runner_up']} ({report_io.fmt(row.get('runner_up_p'), '.2g')}){alias}"
 
 
 def uncertain(row):
@@ -208,8 +219,8 @@ def main():
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     if args.rows:
         print("| dump | expected | solver | inliers | null mean | threshold | p | p range | prior d^2 | "
-              "pvalue | count |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|")
+              "runner-up (p) | pvalue | count |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in rows:
             count_ok = r["inliers"] >= count_threshold(r, args.count)
             p_text = report_io.fmt(r.get("p_value"), ".2g")
@@ -219,7 +230,7 @@ def main():
             print(f"| {r['_name']} | {r['expected']} | {r['solver']} | {r['inliers']} | "
                   f"{report_io.fmt(r.get('null_mean'), '.1f')} | "
                   f"{report_io.fmt(r.get('null_threshold'), 'd')} | {p_text} | {rng_text} | "
-                  f"{report_io.fmt(r.get('prior_d2'), '.3g')} | "
+                  f"{report_io.fmt(r.get('prior_d2'), '.3g')} | {runner_up_text(r)} | "
                   f"{'accept' if r['accepted'] else 'reject'} | "
                   f"{'accept' if count_ok else 'reject'} |")
         print()
@@ -306,7 +317,8 @@ def build_decisions(rows, solvers, count=0):
              "--", f"count:{s}", f"{s}: count rule over K", color=colour, lw=1.2)
         pv = [r for r in mine if r.get("p_value") is not None]
         if pv:
-            cal = [curve(pv, lambda r, a=a: r["p_value"] < a and r["inliers"] >= 3) for a in alphas]
+            cal = [curve(pv, lambda r, a=a: r["p_value"] < a and r["inliers"] >= 3
+                         and not r.get("runner_up_ambiguous")) for a in alphas]
             draw(k, ([c[0] for c in cal], [c[1] for c in cal]), ([c[3] for c in cal], [c[2] for c in cal]),
                  "-", f"alpha:{s}", f"{s}: p < alpha, alpha 1e-16..0.1", color=colour, lw=1.2,
                  marker=marker, ms=3.5)

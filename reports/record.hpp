@@ -62,6 +62,12 @@ struct TrialRecord {
   double lever_arm = kNaN;              ///< selection_geometry().lever_arm [m]
   /// Sets with a pose prior: d^2 of the fitted motion under it (prior_gate.hpp); NaN -> null.
   double prior_d2 = kNaN;
+  /// pvalue rule with a runner-up test, pairs the rest of the rule accepted (runner_up.hpp): the
+  /// runner-up's score, its p under the pair's null, and how far its motion moves the accepted
+  /// inliers (median, in tolerances); unset / NaN otherwise.
+  std::optional<int> runner_up;
+  double runner_up_p = kNaN, runner_up_separation = kNaN;
+  bool runner_up_ambiguous = false;  ///< the runner-up test rejected the pair (RunnerUp::ambiguous)
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 

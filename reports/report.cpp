@@ -190,6 +190,10 @@ json to_json(const TrialRecord& r) {
             {"distinct_inliers", r.distinct_inliers ? json(*r.distinct_inliers) : json(nullptr)},
             {"lever_arm", number_or_null(r.lever_arm)},
             {"prior_d2", number_or_null(r.prior_d2)},
+            {"runner_up", r.runner_up ? json(*r.runner_up) : json(nullptr)},
+            {"runner_up_p", number_or_null(r.runner_up_p)},
+            {"runner_up_separation", number_or_null(r.runner_up_separation)},
+            {"runner_up_ambiguous", r.runner_up_ambiguous},
             {"T_target_source", r.T_target_source}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;

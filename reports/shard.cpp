@@ -139,6 +139,10 @@ TrialRecord trial_from_json(const json& j) {
   r.distinct_inliers = optional<int>(j, "distinct_inliers");
   r.lever_arm = real_or_nan(j, "lever_arm");
   r.prior_d2 = real_or_nan(j, "prior_d2");  // absent (before it existed) or null: no prior
+  r.runner_up = optional<int>(j, "runner_up");  // absent before it existed
+  r.runner_up_p = real_or_nan(j, "runner_up_p");
+  r.runner_up_separation = real_or_nan(j, "runner_up_separation");
+  r.runner_up_ambiguous = optional<bool>(j, "runner_up_ambiguous").value_or(false);
   const json& T = field(j, "T_target_source");
   if (!T.is_array()) bad("field 'T_target_source': not an array");
   for (const json& v : T) {

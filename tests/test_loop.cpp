@@ -602,8 +602,9 @@ TEST(LoopCli, OdometryPriorOnlyGatesTheCalibratedDecisions) {
     std::ifstream in(dir / out / "loop.json");
     return nlohmann::json::parse(in);
   };
-  const auto plain = run("", "plain");
-  const auto gated = run("--odometry-prior --prior-gate 0.05", "gated");
+  // The prior's gate alone: the dense check, on by default under pvalue, is off in both runs.
+  const auto plain = run("--dense-overlap 0", "plain");
+  const auto gated = run("--dense-overlap 0 --odometry-prior --prior-gate 0.05", "gated");
   EXPECT_FALSE(plain["parameters"]["loop"]["odometry_prior"].get<bool>());
   EXPECT_TRUE(gated["parameters"]["loop"]["odometry_prior"].get<bool>());
   ASSERT_EQ(plain["closures"].size(), gated["closures"].size());
@@ -626,6 +627,48 @@ TEST(LoopCli, OdometryPriorOnlyGatesTheCalibratedDecisions) {
   EXPECT_GT(inside, 0);
   EXPECT_GT(gated_out, 0);
   EXPECT_GE(kept_true, 2);  // true loops found without the prior are kept with it
+}
+
+// The dense check's default: 0.56 under the calibrated rule, off under the count rule (the
+// paper's); the pairs the rule accepted are refined and kept only above it, the others untouched.
+TEST(LoopCli, TheDenseCheckIsTheCalibratedRulesDefaultAndNotTheCountRules) {
+  if (!vb::lidar_available()) GTEST_SKIP() << "built without Embree";
+  const fs::path dir = block_twice_folder("vb_loop_dense");
+  auto run = [&](const std::string& rule) {
+    const auto r = run_cli("loop --no-plots --trajectory " + (dir / "poses.txt").string() +
+                           " --pipeline 2d --solvers clique,ransac --scan-spacing 4"
+                           " --lidar-columns 512 --quiet --threads 2 --accept " + rule +
+                           " --out " + (dir / rule).string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream in(dir / rule / "loop.json");
+    return nlohmann::json::parse(in);
+  };
+  const auto pvalue = run("pvalue");
+  const auto count = run("count");
+  EXPECT_EQ(pvalue["parameters"]["loop"]["dense_check"]["min_overlap"].get<double>(),
+            vb::kDefaultMinOverlap);
+  EXPECT_EQ(count["parameters"]["loop"]["dense_check"]["min_overlap"].get<double>(), 0.0);
+  int refined = 0, dropped = 0;
+  for (const auto& r : pvalue["closures"]) {
+    if (!r["rule_accepted"].get<bool>()) {
+      EXPECT_TRUE(r["dense_check"].is_null()) << r.dump();
+      EXPECT_FALSE(r["accepted"].get<bool>());
+      continue;
+    }
+    ASSERT_TRUE(r["dense_check"].is_object()) << r.dump();
+    ++refined;
+    const double overlap = r["dense_check"]["overlap"].get<double>();
+    EXPECT_EQ(r["accepted"].get<bool>(), overlap > vb::kDefaultMinOverlap) << r.dump();
+    dropped += !r["accepted"].get<bool>();
+    // What the check keeps is right against the ground truth's poses.
+    if (r["accepted"].get<bool>()) EXPECT_TRUE(r["correct"].get<bool>()) << r.dump();
+  }
+  EXPECT_GT(refined, 0);
+  for (const auto& r : count["closures"]) {
+    EXPECT_TRUE(r["dense_check"].is_null()) << r.dump();
+    EXPECT_EQ(r["accepted"], r["rule_accepted"]);
+  }
+  std::printf("dense check: %d refined, %d dropped\n", refined, dropped);
 }
 
 TEST(LoopCli, BadInputIsRefusedWithExitCode2) {
@@ -652,6 +695,10 @@ TEST(LoopCli, BadInputIsRefusedWithExitCode2) {
   expect("--trajectory " + (dir / "ok.txt").string() + " --max-hamming 5000" + out,
          "--max-hamming: '5000' is outside [0, 4096]");
   expect("--trajectory " + (dir / "ok.txt").string() + " --solvers nope" + out, "unknown solver");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --dense-overlap -0.5" + out,
+         "min_overlap must be in [0, 1) or -1 (the rule's default), got -0.5");
+  expect("--trajectory " + (dir / "ok.txt").string() + " --runner-up-alpha 1" + out,
+         "--runner-up-alpha");
   expect("--trajectory " + (dir / "ok.txt").string() + " --first-frame 1 --last-frame 1" + out,
          "--last-frame 1 is not after --first-frame 1");
   expect("--trajectory " + (dir / "ok.txt").string() + " --odometry lidar" + out,

@@ -142,6 +142,10 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   r.null_draws = 20;
   r.lever_arm = 3.5;
   r.prior_d2 = 31.25;
+  r.runner_up = 10;
+  r.runner_up_p = 2.5e-7;
+  r.runner_up_separation = 41.5;
+  r.runner_up_ambiguous = true;
   r.T_target_source = {1, 0, 0.5, 0, 1, -0.25, 0, 0, 1};
   const json j = vb::to_json(r);
   EXPECT_EQ(vb::to_json(vb::trial_from_json(json::parse(j.dump()))), j);

@@ -177,6 +177,11 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["prior_d2"] = v.prior_d2 ? py::object(py::float_(*v.prior_d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
   out["provisional"] = calibration ? calibration->budget_exhausted : false;
+  const auto& u = v.runner_up;  // runner_up_alpha > 0 and a pair the rest of the rule accepted
+  out["runner_up"] = u ? py::object(py::int_(u->score)) : py::object(py::none());
+  out["runner_up_p"] = u ? py::object(py::float_(u->p_value)) : py::object(py::none());
+  out["runner_up_separation"] = u ? py::object(py::float_(u->separation)) : py::object(py::none());
+  out["runner_up_ambiguous"] = u ? u->ambiguous : false;
   return out;
 }
 

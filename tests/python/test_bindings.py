@@ -134,6 +134,18 @@ def test_pose_prior_gates_the_calibrated_rule():
         vb.solve("clique", s["src"], s["dst"], prior_T=2 * far, prior_cov=cov)
 
 
+def test_runner_up_test_rejects_a_corridors_shifted_copies():
+    # A repetitive negative: four shifted copies of the corridor and no true motion. The null
+    # accepts one copy; with runner_up_alpha another copy as large is found and the pair rejected.
+    s = vb.synthetic(n=300, dim=3, seed=11, kind="repetitive", negative=True)
+    plain = vb.solve("clique", s["src"], s["dst"], eps=0.1)
+    assert plain["accepted"] and plain["runner_up"] is None and not plain["runner_up_ambiguous"]
+    r = vb.solve("clique", s["src"], s["dst"], eps=0.1, runner_up_alpha=0.001)
+    assert not r["accepted"] and r["runner_up_ambiguous"]
+    assert r["runner_up"] >= 0.6 * len(r["inliers"]) and r["runner_up_p"] < 0.001
+    assert r["runner_up_separation"] > 10.0
+
+
 def test_generators_are_seeded():
     a = vb.synthetic(n=50, seed=3)
     b = vb.synthetic(n=50, seed=3)
