@@ -55,7 +55,8 @@ struct TrialRecord {
   int null_draws = 0, null_limited_draws = 0;
   bool null_screened = false;  ///< pvalue rule: accepted on the score bounds, no null solve
   /// pvalue rule: the pair's time budget ran out before the draws settled the decision
-  /// (Calibration::budget_exhausted): more time could change it.
+  /// (Calibration::budget_exhausted), or stopped a runner-up solve that did not reject the pair
+  /// (RunnerUp::time_limit): more time could change it.
   bool provisional = false;
   double calibration_ms = 0;  ///< the null solves (not in time_ms)
   std::optional<int> distinct_inliers;  ///< selection_geometry().distinct of the selected set

@@ -661,7 +661,9 @@ TEST(LoopCli, TheDenseCheckIsTheCalibratedRulesDefaultAndNotTheCountRules) {
     EXPECT_EQ(r["accepted"].get<bool>(), overlap > vb::kDefaultMinOverlap) << r.dump();
     dropped += !r["accepted"].get<bool>();
     // What the check keeps is right against the ground truth's poses.
-    if (r["accepted"].get<bool>()) EXPECT_TRUE(r["correct"].get<bool>()) << r.dump();
+    if (r["accepted"].get<bool>()) {
+      EXPECT_TRUE(r["correct"].get<bool>()) << r.dump();
+    }
   }
   EXPECT_GT(refined, 0);
   for (const auto& r : count["closures"]) {

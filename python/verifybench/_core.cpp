@@ -176,8 +176,9 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;
   out["prior_d2"] = v.prior_d2 ? py::object(py::float_(*v.prior_d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
-  out["provisional"] = calibration ? calibration->budget_exhausted : false;
   const auto& u = v.runner_up;  // runner_up_alpha > 0 and a pair the rest of the rule accepted
+  out["provisional"] = (calibration && calibration->budget_exhausted) ||
+                       (u && u->time_limit && !u->ambiguous);
   out["runner_up"] = u ? py::object(py::int_(u->score)) : py::object(py::none());
   out["runner_up_p"] = u ? py::object(py::float_(u->p_value)) : py::object(py::none());
   out["runner_up_separation"] = u ? py::object(py::float_(u->separation)) : py::object(py::none());
@@ -445,9 +446,10 @@ PYBIND11_MODULE(_core, m) {
         "them with their defaults, which are the CLI's: accept='pvalue').\n"
         "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
         "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value,\n"
-        "provisional. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1) guess and the\n"
-        "3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under 'pvalue' a\n"
-        "motion outside its chi-square gate at prior_gate is not accepted.");
+        "provisional, and with runner_up_alpha > 0 runner_up, runner_up_p, runner_up_separation,\n"
+        "runner_up_ambiguous. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1)\n"
+        "guess and the 3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under\n"
+        "'pvalue' a motion outside its chi-square gate at prior_gate is not accepted.");
   m.def("generator_settings", &generator_settings_list,
         "Every shape setting synthetic() takes, as `sweep` declares it: keyword, option, key, kind, "
         "default, min, max, help.");
