@@ -19,7 +19,7 @@ bool comparable(int runner, int best, const NullFit& null) {
 template <int Dim>
 std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Dim>& corr,
                                   const Result<Dim>& accepted, const SolverParams& params,
-                                  const NullFit& null, const AcceptParams& accept,
+                                  const Calibration& calibration, const AcceptParams& accept,
                                   const Deadline& budget) {
   const double tol = explained_tolerance(params);
   const Rigid<Dim>& T = accepted.T_target_source;
@@ -51,7 +51,24 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
   if (r.status == Status::error) return std::nullopt;
   out.score = static_cast<int>(r.inliers.size());
   out.time_limit = r.status == Status::time_limit;
-  out.p_value = null.draws > 0 ? null.p_value(out.score) : 1.0;
+  // The runner-up's p: under the pair's solved draws, their cautious fit, as the pair's own early
+  // accept reads a few draws (calibration.hpp), so a chance runner-up does not look significant
+  // because only 3 ran. Where the screen accepted the pair its null is of bounds, too loose for a
+  // smaller score: the runner-up is calibrated itself, on the same permuted sets, at
+  // runner_up_alpha (bounds first again, then solved draws, which stop early either way).
+  NullFit null = calibration.null;
+  if (calibration.screened) {
+    AcceptParams at = accept;
+    at.alpha = accept.runner_up_alpha;
+    const Calibration own = calibrate(solver, corr, params, at, out.score, budget);
+    out.p_value = own.p_value;
+    null = own.null;
+    out.time_limit = out.time_limit || own.budget_exhausted;
+  } else {
+    out.p_value = null.scores.size() >= 2 ? cautious_fit(null.scores).p_value(out.score)
+                  : null.draws > 0        ? null.p_value(out.score)
+                                          : 1.0;
+  }
   std::vector<double> moved;
   moved.reserve(accepted.inliers.size());
   for (int i : accepted.inliers) {
@@ -77,11 +94,11 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
 
 template std::optional<RunnerUp> runner_up<2>(const Solver&, const Correspondences<2>&,
                                               const Result<2>&, const SolverParams&,
-                                              const NullFit&, const AcceptParams&,
+                                              const Calibration&, const AcceptParams&,
                                               const Deadline&);
 template std::optional<RunnerUp> runner_up<3>(const Solver&, const Correspondences<3>&,
                                               const Result<3>&, const SolverParams&,
-                                              const NullFit&, const AcceptParams&,
+                                              const Calibration&, const AcceptParams&,
                                               const Deadline&);
 
 }  // namespace verifybench

@@ -7,18 +7,17 @@
 // chance gives. So: remove every correspondence the accepted motion explains (residual
 // ||T m_i - q_i|| within kExplained tolerances), solve the rest with the same solver, and call
 // the pair ambiguous when that runner-up is itself significant under the pair's null
-// (p_runner < runner_up_alpha, the null of calibration.hpp), comparable to the accepted motion
+// (p_runner < runner_up_alpha under the pair's null, calibration.hpp), comparable to the accepted motion
 // (comparable(): a true motion far stronger than a real but weaker alias, a corridor's shifted
 // copy, still wins), moves the accepted inliers elsewhere (a motion of its own, not the same one
 // split by noise) and, where the set carries a pose prior, lies inside the prior's gate too (a
-// prior that tells the two apart decides). Where the calibration was screened its null is of
-// score bounds, which lie above the solved sets' scores: both tests then err towards keeping the
-// pair.
+// prior that tells the two apart decides). Where the screen accepted the pair, whose null is of
+// score bounds, the runner-up is calibrated on its own (a few more solves at most).
 // BENCHMARK.md section 36 measures it.
 #include <optional>
 
 #include "acceptance/accept_params.hpp"
-#include "acceptance/null_model.hpp"
+#include "acceptance/calibration.hpp"
 #include "core/correspondences.hpp"
 #include "core/deadline.hpp"
 #include "solvers/solver.hpp"
@@ -27,7 +26,9 @@ namespace verifybench {
 
 struct RunnerUp {
   int score = 0;          ///< the runner-up's selection size
-  double p_value = 1.0;   ///< of `score` under the pair's null
+  /// of `score` under the pair's null: the cautious fit of its solved draws (null_model.hpp), or,
+  /// where the screen accepted the pair, the runner-up's own calibration
+  double p_value = 1.0;
   /// Median distance between where the accepted motion and the runner-up's put the accepted
   /// inliers' source points, over the tolerance: <= kSameMotion means one motion.
   double separation = 0.0;
@@ -39,26 +40,27 @@ struct RunnerUp {
 /// graph's eps and the consensus inlier threshold.
 double explained_tolerance(const SolverParams& params);
 
-/// The runner-up of `accepted` (a result the rule accepted) on `corr`; nullopt when nothing is
-/// left to solve. The solve takes what is left of `budget`; its seed is derived from params.seed.
+/// The runner-up of `accepted` (a result the rule accepted, `calibration` its null) on `corr`;
+/// nullopt when nothing is left to solve or the solve failed. The solves take what is left of
+/// `budget`; the runner-up's seed is derived from params.seed.
 template <int Dim>
 std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Dim>& corr,
                                   const Result<Dim>& accepted, const SolverParams& params,
-                                  const NullFit& null, const AcceptParams& accept,
+                                  const Calibration& calibration, const AcceptParams& accept,
                                   const Deadline& budget);
 
 /// Correspondences within this many tolerances of the accepted motion are its own (a k-NN
 /// matching's neighbouring targets, a voxel away, form a near copy of the accepted set).
 inline constexpr double kExplained = 2.0;
 /// Runner-up motions that move the accepted inliers by at most this many tolerances (median) are
-/// the accepted motion again (measured on the corpus: near copies at 0.3-2.4, aliases at 4.3-62).
+/// the accepted motion again (measured on the corpus: near copies at 0.3-2.4, aliases at 3.2-62).
 inline constexpr double kSameMotion = 3.0;
 /// Whether a runner-up of score `runner` is comparable to the accepted `best`: its excess over the
 /// null's location mu is at least kComparable of the best's, runner - mu >= kComparable (best - mu).
 /// Under the Gumbel tail log p(x) ~ -(x - mu) / beta, so this is p_runner <= p_best^kComparable.
 bool comparable(int runner, int best, const NullFit& null);
 
-/// On the corpus's FPFH negatives the runner-up's excess is 0.47-2.1 of the best's (RANSAC's best
+/// On the corpus's KITTI negatives (FPFH) the runner-up's excess is 0.47-2.1 of the best's (RANSAC's best
 /// is not always the largest); the laser logs' true closures that have a significant alias give
 /// 0.07-0.2 (BENCHMARK.md section 36).
 inline constexpr double kComparable = 0.4;

@@ -1,6 +1,7 @@
 #include "acceptance/verify.hpp"
 
 #include <exception>
+#include <sstream>
 
 #include "acceptance/prior_gate.hpp"
 #include "core/timer.hpp"
@@ -24,10 +25,15 @@ Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
                                 static_cast<int>(v.result.inliers.size()), budget);
       decide_calibrated(v.result, corr, *v.calibration, accept);
       if (v.result.accepted && accept.runner_up_alpha > 0.0) {
-        v.runner_up = runner_up(solver, corr, v.result, params, v.calibration->null, accept, budget);
+        v.runner_up = runner_up(solver, corr, v.result, params, *v.calibration, accept, budget);
         if (v.runner_up && v.runner_up->ambiguous) {
           v.result.accepted = false;
           if (v.result.status == Status::ok) v.result.status = Status::rejected;
+          std::ostringstream msg;
+          msg << "runner-up test: a second motion of " << v.runner_up->score << " inliers (p "
+              << v.runner_up->p_value << ") " << v.runner_up->separation
+              << " tolerances away: a rigid alias";
+          v.result.message = msg.str();
         }
       }
     } catch (const std::exception& e) {

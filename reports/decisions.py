@@ -20,7 +20,8 @@ calibration). A pair counts as registered by its motion alone, accepted or not.
 p-value, its range, d^2 of the fitted motion under the set's pose prior (`prior_d2`; "-" without
 one; the calibrated rule rejects beyond the prior gate), the runner-up test's score and p where
 it ran (`--runner-up-alpha`; "(alias)" where it rejected the pair) and both decisions. The curve
-over alpha keeps a pair the runner-up test rejected rejected at every alpha. `uncertain` counts the calibrated decisions whose p range
+over alpha keeps a pair the runner-up test rejected rejected at every alpha; the test ran only on
+pairs accepted at the reports' alpha, so points at a larger alpha include pairs it never saw. `uncertain` counts the calibrated decisions whose p range
 (the p that the null's draws cannot tell apart) holds alpha: other draws may reverse them. --plot draws ROC and precision-recall curves per solver: the
 calibrated rule over alpha (a sweep of the p-value threshold) and the count rule over K.
 """

@@ -2,7 +2,7 @@
 // draws: a repetitive corridor's shifted copies and a rigid group larger than the truth (aliases
 // the permutation null accepts), a true motion far stronger than its aliases, a copy of the
 // inliers moved by a known translation (the same motion below kSameMotion tolerances, a second
-// one above), and a pose prior that tells the truth from its copies.
+// one above), and a pose prior that tells the truth from its copy or cannot.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -139,30 +139,49 @@ TEST(RunnerUp, ACopyWithinThreeTolerancesIsTheSameMotionBeyondItASecondOne) {
   EXPECT_FALSE(far.result.accepted);
 }
 
-TEST(RunnerUp, APriorThatTellsTheTruthFromItsCopiesDecides) {
+TEST(RunnerUp, APriorThatTellsTheTruthFromItsCopyDecides) {
   register_builtin_solvers();
-  // 120 inliers, 180 in shifted copies (about 45 each); a second equal copy of the truth 2 m off.
-  LabeledSet<3> set = with_moved_copy(draw("repetitive", 0.6, 16), Eigen::Vector3d(0, 0, 2));
-  const auto solver = SolverRegistry::create("clique");
-  const Verification<3> no_prior = verify(*solver, set.corr, SolverParams{}, with_test());
-  EXPECT_FALSE(no_prior.result.accepted);
-  // A prior 0.05 m / 0.3 deg around the truth: the copy 2 m off is far outside its gate.
-  PosePrior<3> prior;
-  prior.T_target_source = *set.truth.T_target_source;
-  prior.covariance.setIdentity();
-  prior.covariance.topLeftCorner<3, 3>() *= std::pow(0.3 * M_PI / 180.0, 2);
-  prior.covariance.bottomRightCorner<3, 3>() *= 0.05 * 0.05;
-  set.corr.prior = prior;
-  const Verification<3> gated = verify(*solver, set.corr, SolverParams{}, with_test());
-  // Whichever copy the clique picks, a wrong accept is impossible: the prior's gate rejects the
-  // copy, the runner-up test leaves the truth alone when the copy is outside the gate.
-  if (right_motion(gated.result.T_target_source, set)) {
-    EXPECT_TRUE(gated.result.accepted);
-    ASSERT_TRUE(gated.runner_up.has_value());
-    EXPECT_FALSE(gated.runner_up->ambiguous);
-  } else {
-    EXPECT_FALSE(gated.result.accepted);
+  // 60 inliers and a copy of 42 of them 2 m off: the truth is the maximum clique, the copy a
+  // comparable second motion (42 of 60).
+  const LabeledSet<3> base = draw("uniform", 0.8, 17);
+  LabeledSet<3> part = base;  // the copy of the first 70% of the inliers only
+  int kept = 0, total = 0;
+  for (auto l : base.truth.labels) total += l;
+  for (auto& l : part.truth.labels) {
+    if (l && kept >= total * 7 / 10) l = 0;
+    kept += l;
   }
+  LabeledSet<3> set = with_moved_copy(part, Eigen::Vector3d(0, 0, 2));
+  set.truth = base.truth;
+  set.truth.labels.resize(static_cast<std::size_t>(set.corr.size()), 0);
+  const auto solver = SolverRegistry::create("clique");
+  auto with_prior = [&](double rot_deg, double trans) {
+    LabeledSet<3> s = set;
+    PosePrior<3> prior;
+    prior.T_target_source = *set.truth.T_target_source;
+    prior.covariance.setIdentity();
+    prior.covariance.topLeftCorner<3, 3>() *= std::pow(rot_deg * M_PI / 180.0, 2);
+    prior.covariance.bottomRightCorner<3, 3>() *= trans * trans;
+    s.corr.prior = prior;
+    return verify(*solver, s.corr, SolverParams{}, with_test());
+  };
+  const Verification<3> none = verify(*solver, set.corr, SolverParams{}, with_test());
+  ASSERT_TRUE(right_motion(none.result.T_target_source, set));
+  ASSERT_TRUE(none.runner_up.has_value());
+  EXPECT_NEAR(none.runner_up->separation, 20.0, 0.5);
+  EXPECT_TRUE(none.runner_up->ambiguous);
+  EXPECT_FALSE(none.result.accepted);
+  // 0.05 m / 0.3 deg around the truth: the copy 2 m off is far outside the gate; the truth wins.
+  const Verification<3> tight = with_prior(0.3, 0.05);
+  ASSERT_TRUE(tight.runner_up.has_value());
+  EXPECT_FALSE(tight.runner_up->ambiguous);
+  EXPECT_TRUE(tight.result.accepted);
+  // 10 m / 30 deg: both inside; the prior cannot tell them apart and the pair stays ambiguous.
+  const Verification<3> broad = with_prior(30.0, 10.0);
+  ASSERT_TRUE(broad.runner_up.has_value());
+  EXPECT_TRUE(broad.runner_up->ambiguous);
+  EXPECT_FALSE(broad.result.accepted);
+  EXPECT_NE(broad.result.message.find("runner-up test"), std::string::npos) << broad.result.message;
 }
 
 TEST(RunnerUp, ComparableIsTheExcessOverTheNullsLocation) {
@@ -177,7 +196,7 @@ TEST(RunnerUp, ComparableIsTheExcessOverTheNullsLocation) {
   EXPECT_FALSE(comparable(18, 25, null));
 }
 
-TEST(RunnerUp, TheCountRuleAndAFailedSolveRunNoRunnerUp) {
+TEST(RunnerUp, TheCountRuleRunsNoRunnerUpAndABadLevelIsNamed) {
   register_builtin_solvers();
   const LabeledSet<3> set = draw("repetitive", 1.0, 11, true);
   AcceptParams a = with_test();

@@ -446,8 +446,8 @@ PYBIND11_MODULE(_core, m) {
         "them with their defaults, which are the CLI's: accept='pvalue').\n"
         "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
         "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value,\n"
-        "provisional, and with runner_up_alpha > 0 runner_up, runner_up_p, runner_up_separation,\n"
-        "runner_up_ambiguous. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1)\n"
+        "provisional, runner_up, runner_up_p, runner_up_separation (None unless runner_up_alpha > 0\n"
+        "ran the test), runner_up_ambiguous. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1)\n"
         "guess and the 3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under\n"
         "'pvalue' a motion outside its chi-square gate at prior_gate is not accepted.");
   m.def("generator_settings", &generator_settings_list,
