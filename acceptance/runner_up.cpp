@@ -51,24 +51,19 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
   if (r.status == Status::error) return std::nullopt;
   out.score = static_cast<int>(r.inliers.size());
   out.time_limit = r.status == Status::time_limit;
-  // The runner-up's p: under the pair's solved draws, their cautious fit, as the pair's own early
-  // accept reads a few draws (calibration.hpp), so a chance runner-up does not look significant
-  // because only 3 ran. Where the screen accepted the pair its null is of bounds, too loose for a
-  // smaller score: the runner-up is calibrated itself, on the same permuted sets, at
-  // runner_up_alpha (bounds first again, then solved draws, which stop early either way).
-  NullFit null = calibration.null;
-  if (calibration.screened) {
-    AcceptParams at = accept;
-    at.alpha = accept.runner_up_alpha;
-    const Calibration own = calibrate(solver, corr, params, at, out.score, budget);
-    out.p_value = own.p_value;
-    null = own.null;
-    out.time_limit = out.time_limit || own.budget_exhausted;
-  } else {
-    out.p_value = null.scores.size() >= 2 ? cautious_fit(null.scores).p_value(out.score)
-                  : null.draws > 0        ? null.p_value(out.score)
-                                          : 1.0;
-  }
+  // The runner-up's p: the calibrated rule's own, as if the runner-up were the pair's score, at
+  // runner_up_alpha (calibrate(): the same permuted sets, the screen's bounds first, then solved
+  // draws that stop early, a cautious fit before an early accept, more draws where the range of p
+  // holds the level). So it is significant exactly when the rule would accept that score, whether
+  // the pair's own null was of a few draws or of the screen's bounds (too loose for a smaller
+  // score).
+  AcceptParams at = accept;
+  at.alpha = accept.runner_up_alpha;
+  const Calibration own = calibrate(solver, corr, params, at, out.score, budget);
+  out.p_value = own.p_value;
+  out.time_limit = out.time_limit || own.budget_exhausted;
+  // The chance level the excesses are measured from: solved draws where either null has them.
+  const NullFit& null = !own.screened || calibration.screened ? own.null : calibration.null;
   std::vector<double> moved;
   moved.reserve(accepted.inliers.size());
   for (int i : accepted.inliers) {

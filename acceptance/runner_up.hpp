@@ -11,8 +11,8 @@
 // (comparable(): a true motion far stronger than a real but weaker alias, a corridor's shifted
 // copy, still wins), moves the accepted inliers elsewhere (a motion of its own, not the same one
 // split by noise) and, where the set carries a pose prior, lies inside the prior's gate too (a
-// prior that tells the two apart decides). Where the screen accepted the pair, whose null is of
-// score bounds, the runner-up is calibrated on its own (a few more solves at most).
+// prior that tells the two apart decides). The runner-up's p is the calibrated rule's for its
+// score (the same permuted sets; a few more solves, as many as the rule would take).
 // BENCHMARK.md section 36 measures it.
 #include <optional>
 
@@ -26,8 +26,7 @@ namespace verifybench {
 
 struct RunnerUp {
   int score = 0;          ///< the runner-up's selection size
-  /// of `score` under the pair's null: the cautious fit of its solved draws (null_model.hpp), or,
-  /// where the screen accepted the pair, the runner-up's own calibration
+  /// of `score` under the pair's null: calibrate() of `score` at runner_up_alpha
   double p_value = 1.0;
   /// Median distance between where the accepted motion and the runner-up's put the accepted
   /// inliers' source points, over the tolerance: <= kSameMotion means one motion.
