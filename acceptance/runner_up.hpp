@@ -60,7 +60,7 @@ inline constexpr double kSameMotion = 3.0;
 bool comparable(int runner, int best, const NullFit& null);
 
 /// On the corpus's KITTI negatives (FPFH) the runner-up's excess is 0.47-2.1 of the best's (RANSAC's best
-/// is not always the largest); the laser logs' true closures that have a significant alias give
+/// is not always the largest); intel's true closures that have a significant alias give mostly
 /// 0.07-0.2 (BENCHMARK.md section 36).
 inline constexpr double kComparable = 0.4;
 
