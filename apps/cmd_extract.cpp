@@ -24,7 +24,12 @@ int cmd_extract(const std::vector<std::string>& args) {
       .real("label-threshold", p.label_threshold, "M",
             "label a match inlier when ||T m - q|| is under this", 1e-9, 1e9)
       .seed("seed", p.seed, "seed of the --max-matches draw")
-      .text("out", out, "DIR", "dump folder to create (required; must not exist)");
+      .text("out", out, "DIR", "dump folder to create (required; must not exist)")
+      .flag("keep-clouds", p.keep_clouds,
+            "keep both clouds in the dump (source_cloud.bin, target_cloud.bin) for run's dense "
+            "check of an accepted motion")
+      .real("cloud-voxel", p.cloud_voxel, "M",
+            "--keep-clouds: one point per cell of this grid (0 = every point as read)", 0.0, 1e3);
   o.group("front end (the same options as `verifybench loop`)");
   cli::add_rows(o, frontend_param_rows(), p);
   if (o.parse_or_help(args,

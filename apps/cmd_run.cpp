@@ -8,6 +8,10 @@
 #include "generators/synthetic.hpp"
 #include "harness/harness.hpp"
 #include "harness/progress.hpp"
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+#include "apps/param_options.hpp"
+#include "harness/dense_rows.hpp"
+#endif
 
 namespace verifybench {
 
@@ -34,11 +38,19 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
               expected_text = v;
             });
   cli::add_prior_options(o, "the set (it needs a ground truth)", prior_options);
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  DenseCheckParams dense;
+  o.group("dense check (dumps with clouds: extract --keep-clouds)");
+  cli::add_rows(o, dense_check_param_rows(), dense);
+#endif
   cli::add_shard_option(o, shard);
   if (o.parse_or_help(args, "usage: verifybench run --dump DIR [options] --out FILE.json\n"))
     return 0;
   o.require("dump");
   cli::check_solver_options(opts);
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  dense.validate();
+#endif
   const auto& names = opts.solvers;
   const SolverParams& params = opts.params;
   const AcceptParams& accept = opts.accept;
@@ -77,6 +89,24 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
             shard);
       },
       dump.set);
+  // The dense check where the dump kept its clouds (the same check as the loop's on its maps).
+  nlohmann::json dense_json = nullptr;
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  // The report holds the threshold in force, not "the rule's default".
+  if (dense.min_overlap == DenseCheckParams::kRuleDefault) {
+    dense.min_overlap = dense.min_overlap_for(accept.rule);
+  }
+  if (dump.clouds) {
+    dense_check_rows(rows, *dump.clouds, dense, accept.rule, crit);
+    dense_json = cli::rows_json(dense_check_param_rows(), dense);
+    dense_json["icp_max_iterations"] = dense.icp.max_iterations;
+  }
+#else
+  if (dump.clouds && !opts.quiet) {
+    std::cerr << "run: " << dir << " keeps its clouds, but this build has no dense check "
+              << "(configure with the front end)\n";
+  }
+#endif
   if (!opts.quiet) cli::print_point(rows);
   nlohmann::json parameters = cli::params_json(params, accept, crit);
   parameters["run"] = {
@@ -89,6 +119,12 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
       {"label_threshold",
        dump.label_threshold ? nlohmann::json(*dump.label_threshold) : nlohmann::json(nullptr)},
       {"dump_provenance", dump.provenance},
+      {"clouds", dump.clouds ? nlohmann::json{{"points", {dump.clouds->source.size(),
+                                                          dump.clouds->target.size()}},
+                                              {"voxel_m", dump.clouds->voxel}}
+                             : nlohmann::json(nullptr)},
+      // null: the dump kept no clouds (or the build has no dense check), so none ran
+      {"dense_check", dense_json},
       // |R^T R - I| of the ground truth as the dump published it (projected onto SO(n) for use).
       {"ground_truth_rotation_residual",
        std::visit([](const auto& s) { return s.truth.rotation_residual; }, dump.set)}};

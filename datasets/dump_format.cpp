@@ -54,6 +54,7 @@ void write_set(const fs::path& tmp, const LabeledSet<Dim>& s, const Dump& dump) 
       for (int c = 0; c <= Dim; ++c) m.push_back(M(r, c));
     meta["T_target_source"] = m;
   }
+  if (dump.clouds) meta["clouds"] = write_dump_clouds(tmp, *dump.clouds);
   std::ofstream js(tmp / "dump.json");
   js << meta.dump(2) << "\n";
   std::ofstream tsv(tmp / "matches.tsv");
@@ -182,6 +183,9 @@ Dump read_set(const fs::path& dir, const json& meta) {
     dump.label_threshold = meta["label_threshold"].get<double>();
   }
   if (meta.contains("provenance")) dump.provenance = meta["provenance"];
+  if (meta.contains("clouds") && !meta["clouds"].is_null()) {
+    dump.clouds = read_dump_clouds(dir, meta["clouds"]);
+  }
   return dump;
 }
 

@@ -3,7 +3,8 @@
 //   DIR/dump.json    {"format": "verifybench-dump", "version": 1, "dim": 2|3, "count": n,
 //                     "columns": ["xs","ys",("zs"),"xt","yt",("zt"),("score"),("label")],
 //                     "T_target_source": row-major (dim+1)^2 | null,
-//                     "label_threshold": metres | null, "provenance": {...}}
+//                     "label_threshold": metres | null, "provenance": {...},
+//                     "clouds": {...} (optional: the two clouds, datasets/dump_clouds.hpp)}
 //   DIR/matches.tsv  one line per correspondence, tab-separated, in the order of "columns";
 //                    a first line "# " + the column names. score: higher = better (e.g. minus the
 //                    Hamming distance); label: 1 = inlier (ground-truth residual <
@@ -14,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "datasets/dump_clouds.hpp"
 #include "datasets/text_dump.hpp"
 
 namespace verifybench {
@@ -22,6 +24,7 @@ struct Dump {
   AnySet set;                             ///< points, optional scores, truth
   std::optional<double> label_threshold;  ///< how labels were derived, when they were
   nlohmann::json provenance = nlohmann::json::object();  ///< inputs, parameters, counts, timings
+  std::optional<DumpClouds> clouds;  ///< `extract --keep-clouds`: for the dense check
 };
 
 constexpr int kDumpFormatVersion = 1;

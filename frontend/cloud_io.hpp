@@ -16,6 +16,9 @@ using Cloud = std::vector<Eigen::Vector3f>;
 /// (with its point index), or no points at all.
 Cloud read_cloud(const std::string& path);
 
+/// One centroid per occupied cell of a `voxel` grid (PCL's voxel grid filter).
+Cloud voxel_downsample(const Cloud& cloud, double voxel);
+
 /// Twelve or sixteen numbers, row-major; the rotation is checked and projected onto SO(3) by the
 /// rule of core/transform.hpp.
 Rigid<3> read_transform(const std::string& path);

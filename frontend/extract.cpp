@@ -230,6 +230,13 @@ Dump extract(const std::string& source_cloud, const std::string& target_cloud,
       {"source", source_cloud},
       {"target", target_cloud},
       {"T_target_source", transform_file ? json(*transform_file) : json(nullptr)}};
+  if (params.keep_clouds) {
+    DumpClouds kept;
+    kept.voxel = params.cloud_voxel;
+    kept.source = params.cloud_voxel > 0.0 ? voxel_downsample(src, params.cloud_voxel) : src;
+    kept.target = params.cloud_voxel > 0.0 ? voxel_downsample(tgt, params.cloud_voxel) : tgt;
+    dump.clouds = std::move(kept);
+  }
   dump.provenance["ms"]["total"] = clock.ms();
   return dump;
 }

@@ -34,6 +34,10 @@ struct ExtractParams {
   bool exact_matching = false;  ///< HBST with backtracking (= brute force) instead of one leaf
   HbstParams hbst;
   double label_threshold = 1.0;  ///< [m]; the paper's eps in 3D
+  /// extract(): keep both clouds in the dump (datasets/dump_clouds.hpp), thinned on a grid of
+  /// cloud_voxel (0 = as read), for the dense check of `run` (acceptance/dense_check.hpp).
+  bool keep_clouds = false;
+  double cloud_voxel = 0.25;  ///< [m]
 };
 
 /// A front-end pipeline: one scan in, keypoints and binary descriptors out.

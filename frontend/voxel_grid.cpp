@@ -25,3 +25,16 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr voxel_grid(const Cloud& cloud, double voxel,
 }
 
 }  // namespace verifybench::detail
+
+namespace verifybench {
+
+Cloud voxel_downsample(const Cloud& cloud, double voxel) {
+  Features scratch;
+  const auto down = detail::voxel_grid(cloud, voxel, scratch);
+  Cloud out;
+  out.reserve(down->size());
+  for (const auto& p : *down) out.emplace_back(p.x, p.y, p.z);
+  return out;
+}
+
+}  // namespace verifybench

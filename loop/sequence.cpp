@@ -330,7 +330,7 @@ void solve_pair(Solver& solver, const std::string& name, Dump& dump, bool is_tru
       dump.set);
 }
 
-/// Verification, after the accept rule: the dense check (loop/dense_check.hpp, when on) of a
+/// Verification, after the accept rule: the dense check (acceptance/dense_check.hpp, when on) of a
 /// pair the rule accepted may overrule it (a rejected pair is not refined: its ICP would cost a
 /// map registration per solver and candidate and decide nothing); the solver's errors against the
 /// truth; the motion the loop goes on with; and whether the closure is correct (a true closure
@@ -340,7 +340,7 @@ void judge_row(const LoopConfig& config, const LocalMap& q, const LocalMap& m, b
   row.rule_accepted = row.record.accepted;
   const double min_overlap = config.dense.min_overlap_for(config.accept.rule);
   if (min_overlap > 0.0 && row.record.accepted && !row.record.T_target_source.empty()) {
-    row.dense = dense_check(q, m, row.T_estimate, config.dense);
+    row.dense = dense_check(q.points, m.points, row.T_estimate, config.dense);
     if (!(row.dense.overlap > min_overlap)) {
       row.record.accepted = false;
       row.record.message = "dense check: overlap " + std::to_string(row.dense.overlap) +

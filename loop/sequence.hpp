@@ -19,7 +19,7 @@
 //   verify      each solver of the registry on the correspondences of each candidate pair
 //               (every match within max_hamming bits, as an HBST query returns them), accepted
 //               by the solver's rule (count or calibrated p-value), then the dense check when on
-//               (loop/dense_check.hpp);
+//               (acceptance/dense_check.hpp);
 //   metrics     per solver, the decisions scored (loop/evaluation.hpp, trajectory_metrics.hpp);
 //   back end    per solver, a pose graph of the maps (odometry edges + its accepted closures),
 //               solved by each back end of the registry of loop/backend.hpp (plain, robust);
@@ -40,7 +40,7 @@
 #include "generators/odometry.hpp"
 #include "generators/world.hpp"
 #include "loop/consistency.hpp"
-#include "loop/dense_check.hpp"
+#include "acceptance/dense_check.hpp"
 #include "loop/relations.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/odometry_calibration.hpp"

@@ -82,6 +82,23 @@ def runner_up_text(row):
     return f"{row['runner_up']} ({report_io.fmt(row.get('runner_up_p'), '.2g')}){alias}"
 
 
+def dense_text(row):
+    """The dense check's row cell: the clouds' overlap after ICP, "(refuted)" where it rejected the
+    pair; "-" where it did not run (no clouds, or a pair the rule rejected)."""
+    check = row.get("dense_check")
+    if not check:
+        return "-"
+    return f"{check['overlap']:.3f}{' (refuted)' if dense_refuted(row) else ''}"
+
+
+def dense_refuted(row):
+    """True when the dense check rejected a pair the accept rule had accepted. The check runs only
+    on the pairs accepted at the run's alpha, so past that alpha the curve over alpha counts pairs
+    it never saw as the rule alone decides them."""
+    return bool(row.get("dense_check")) and not row["accepted"] and \
+        row.get("message", "").startswith("dense check")
+
+
 def uncertain(row):
     """True when the row's p range (draws cannot tell its ends apart) holds alpha: other draws
     may reverse the decision."""
@@ -220,8 +237,8 @@ def main():
     solvers = list(dict.fromkeys(r["solver"] for r in rows))
     if args.rows:
         print("| dump | expected | solver | inliers | null mean | threshold | p | p range | prior d^2 | "
-              "runner-up (p) | pvalue | count |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+              "runner-up (p) | dense overlap | pvalue | count |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in rows:
             count_ok = r["inliers"] >= count_threshold(r, args.count)
             p_text = report_io.fmt(r.get("p_value"), ".2g")
@@ -231,7 +248,7 @@ def main():
             print(f"| {r['_name']} | {r['expected']} | {r['solver']} | {r['inliers']} | "
                   f"{report_io.fmt(r.get('null_mean'), '.1f')} | "
                   f"{report_io.fmt(r.get('null_threshold'), 'd')} | {p_text} | {rng_text} | "
-                  f"{report_io.fmt(r.get('prior_d2'), '.3g')} | {runner_up_text(r)} | "
+                  f"{report_io.fmt(r.get('prior_d2'), '.3g')} | {runner_up_text(r)} | {dense_text(r)} | "
                   f"{'accept' if r['accepted'] else 'reject'} | "
                   f"{'accept' if count_ok else 'reject'} |")
         print()
@@ -319,7 +336,8 @@ def build_decisions(rows, solvers, count=0):
         pv = [r for r in mine if r.get("p_value") is not None]
         if pv:
             cal = [curve(pv, lambda r, a=a: r["p_value"] < a and r["inliers"] >= 3
-                         and not r.get("runner_up_ambiguous")) for a in alphas]
+                         and not r.get("runner_up_ambiguous") and not dense_refuted(r))
+                   for a in alphas]
             draw(k, ([c[0] for c in cal], [c[1] for c in cal]), ([c[3] for c in cal], [c[2] for c in cal]),
                  "-", f"alpha:{s}", f"{s}: p < alpha, alpha 1e-16..0.1", color=colour, lw=1.2,
                  marker=marker, ms=3.5)

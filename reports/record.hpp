@@ -69,6 +69,13 @@ struct TrialRecord {
   std::optional<int> runner_up;
   double runner_up_p = kNaN, runner_up_separation = kNaN;
   bool runner_up_ambiguous = false;  ///< the runner-up test rejected the pair (RunnerUp::ambiguous)
+  /// The dense check (acceptance/dense_check.hpp) of a pair the rule accepted, where the set's
+  /// clouds are known: the clouds' overlap after ICP (NaN: it did not run), the ICP's
+  /// convergence, fitness [m^2], refined motion (row-major) and the check's wall time.
+  double dense_overlap = kNaN;
+  bool dense_icp_converged = false;
+  double dense_icp_fitness = kNaN, dense_ms = 0;
+  std::vector<double> dense_T_target_source;
   std::vector<double> T_target_source;  ///< row-major (dim+1)x(dim+1) estimate
 };
 

@@ -194,6 +194,13 @@ json to_json(const TrialRecord& r) {
             {"runner_up_p", number_or_null(r.runner_up_p)},
             {"runner_up_separation", number_or_null(r.runner_up_separation)},
             {"runner_up_ambiguous", r.runner_up_ambiguous},
+            {"dense_check", std::isnan(r.dense_overlap)
+                                ? json(nullptr)
+                                : json{{"overlap", r.dense_overlap},
+                                       {"icp_converged", r.dense_icp_converged},
+                                       {"icp_fitness_m2", number_or_null(r.dense_icp_fitness)},
+                                       {"ms", r.dense_ms},
+                                       {"T_target_source_refined", r.dense_T_target_source}}},
             {"T_target_source", r.T_target_source}};
   if (!r.message.empty()) j["message"] = r.message;
   return j;

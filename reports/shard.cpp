@@ -143,6 +143,15 @@ TrialRecord trial_from_json(const json& j) {
   r.runner_up_p = real_or_nan(j, "runner_up_p");
   r.runner_up_separation = real_or_nan(j, "runner_up_separation");
   r.runner_up_ambiguous = optional<bool>(j, "runner_up_ambiguous").value_or(false);
+  if (j.contains("dense_check") && !j.at("dense_check").is_null()) {  // absent before it existed
+    const json& d = j.at("dense_check");
+    if (!d.is_object()) bad("field 'dense_check': not an object: " + d.dump());
+    r.dense_overlap = get<double>(d, "overlap");
+    r.dense_icp_converged = get<bool>(d, "icp_converged");
+    r.dense_icp_fitness = real_or_nan(d, "icp_fitness_m2");
+    r.dense_ms = get<double>(d, "ms");
+    r.dense_T_target_source = get<std::vector<double>>(d, "T_target_source_refined");
+  }
   const json& T = field(j, "T_target_source");
   if (!T.is_array()) bad("field 'T_target_source': not an array");
   for (const json& v : T) {

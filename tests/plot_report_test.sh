@@ -87,6 +87,60 @@ assert neg and all(r["runner_up_ambiguous"] and not r["accepted"] for r in neg),
 cells = [l.split("|")[10].strip() for l in open(sys.argv[2]) if "| negative |" in l]
 assert len(cells) == len(neg) and all(c.endswith("(alias)") for c in cells), cells
 PY
+# The dense check's cell (a build with the front end: `run --dense-overlap`): two dumps with the same matches (40 consistent with a 1 m shift among 40
+# drawn at random) and kept clouds: in one the target cloud is the source's under the shift
+# (overlap near 1, kept), in the other it lies 50 m away (the rule accepts the matches, the
+# clouds refute them: "(refuted)"); a dump without clouds shows "-".
+if "$VERIFYBENCH" run --help | grep -q -- "--dense-overlap"; then
+$py - "$out" <<'PY'
+import json, os, random, struct, sys
+random.seed(7)
+out = sys.argv[1]
+cloud = []
+for _ in range(3000):  # three orthogonal planes of a 20 m corner
+    a, b, k = random.uniform(0, 20), random.uniform(0, 20), random.randrange(3)
+    cloud.append([(a, b, 0.0), (a, 0.0, b), (0.0, a, b)][k])
+pairs = [(p, (p[0] + 1.0, p[1], p[2])) for p in random.sample(cloud, 40)]
+pairs += [(random.choice(cloud), tuple(random.uniform(0, 20) for _ in range(3))) for _ in range(40)]
+def write(name, target, keep):
+    d = os.path.join(out, name)
+    os.makedirs(d)
+    meta = {"format": "verifybench-dump", "version": 1, "dim": 3, "count": len(pairs),
+            "columns": ["xs", "ys", "zs", "xt", "yt", "zt"], "T_target_source": None,
+            "label_threshold": None, "provenance": {}}
+    if keep:
+        for side, pts in (("source", cloud), ("target", target)):
+            with open(os.path.join(d, side + "_cloud.bin"), "wb") as f:
+                for p in pts:
+                    f.write(struct.pack("<4f", p[0], p[1], p[2], 0.0))
+        meta["clouds"] = {"source": "source_cloud.bin", "target": "target_cloud.bin",
+                          "points": [len(cloud), len(target)], "voxel_m": 0}
+    json.dump(meta, open(os.path.join(d, "dump.json"), "w"))
+    with open(os.path.join(d, "matches.tsv"), "w") as f:
+        f.write("xs\tys\tzs\txt\tyt\tzt\n")
+        for m, q in pairs:
+            f.write("\t".join(f"{v:.9g}" for v in (*m, *q)) + "\n")
+write("kept", [(p[0] + 1.0, p[1], p[2]) for p in cloud], True)
+write("apart", [(p[0] + 50.0, p[1], p[2]) for p in cloud], True)
+write("bare", [], False)
+PY
+for d in kept apart bare; do
+  expected=negative; [ $d = kept ] && expected=positive
+  "$VERIFYBENCH" run --dump "$out/$d" --solvers clique --eps 0.2 --expected $expected --quiet \
+    --out "$out/dense_$d.json" >/dev/null
+done
+$py "$src/reports/decisions.py" "$out/dense_kept.json" "$out/dense_apart.json" "$out/dense_bare.json" \
+  --rows > "$out/dense.md"
+$py - "$out/dense.md" <<'PY' || { echo "decisions --rows dense check"; cat "$out/dense.md"; exit 1; }
+import sys
+cells = {l.split("|")[1].strip(): (l.split("|")[11].strip(), l.split("|")[12].strip())
+         for l in open(sys.argv[1]) if l.startswith("| ") and ("| positive |" in l or "| negative |" in l)}
+kept, apart, bare = cells["kept"], cells["apart"], cells["bare"]
+assert float(kept[0]) > 0.9 and kept[1] == "accept", kept
+assert apart[0].endswith("(refuted)") and float(apart[0].split()[0]) < 0.1 and apart[1] == "reject", apart
+assert bare == ("-", "accept"), bare
+PY
+fi
 if $py "$src/reports/decisions.py" "$out/d.json" 2>"$out/err"; then
   echo "a report without expected decisions was scored"; exit 1
 fi

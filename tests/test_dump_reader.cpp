@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "cliques/max_clique.hpp"
@@ -238,6 +239,92 @@ TEST(DumpFormat, AnEmptyDumpIsRefusedAsTheTextReaderRefusesOne) {
     EXPECT_NE(std::string(e.what()).find("no correspondences"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("matches.tsv"), std::string::npos) << e.what();
   }
+  fs::remove_all(dir);
+}
+
+// The clouds a dump keeps (extract --keep-clouds): written in the KITTI .bin layout and read back
+// bit for bit; a damaged or hostile cloud entry is an input error naming the file and the field,
+// and a dump without the entry reads as before (no clouds).
+TEST(DumpFormat, KeptCloudsRoundTripAndBadOnesAreNamed) {
+  LabeledSet<3> s;
+  s.corr.source = Eigen::Matrix3Xd::Random(3, 5);
+  s.corr.target = Eigen::Matrix3Xd::Random(3, 5);
+  Dump d;
+  d.set = s;
+  DumpClouds c;
+  for (int i = 0; i < 9; ++i) c.source.emplace_back(0.5f * i, -1.25f * i, 3.0f + i);
+  for (int i = 0; i < 4; ++i) c.target.emplace_back(-7.0f * i, 0.1f, 1e6f);
+  c.voxel = 0.25;
+  d.clouds = c;
+  const fs::path dir = fs::temp_directory_path() / "vb_dump_clouds";
+  fs::remove_all(dir);
+  write_dump(dir.string(), d);
+  // The layout any KITTI reader expects: 16-byte records x y z r.
+  EXPECT_EQ(fs::file_size(dir / "source_cloud.bin"), 9u * 16u);
+  EXPECT_EQ(fs::file_size(dir / "target_cloud.bin"), 4u * 16u);
+  const Dump back = read_dump(dir.string());
+  ASSERT_TRUE(back.clouds.has_value());
+  EXPECT_EQ(back.clouds->source, c.source);
+  EXPECT_EQ(back.clouds->target, c.target);
+  EXPECT_EQ(back.clouds->voxel, 0.25);
+  nlohmann::json meta;
+  {
+    std::ifstream in(dir / "dump.json");
+    meta = nlohmann::json::parse(in);
+  }
+  auto expect_error = [&](const nlohmann::json& clouds, const std::string& file,
+                          const std::string& needle) {
+    nlohmann::json m = meta;
+    m["clouds"] = clouds;
+    std::ofstream(dir / "dump.json") << m.dump();
+    try {
+      read_dump(dir.string());
+      ADD_FAILURE() << clouds.dump();
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+    }
+  };
+  const nlohmann::json good = meta["clouds"];
+  nlohmann::json bad = good;
+  bad["points"] = {9, 5};
+  expect_error(bad, "target_cloud.bin", "declares 5 points");
+  bad = good;
+  bad["source"] = "../elsewhere.bin";
+  expect_error(bad, "dump.json", "clouds.source");
+  bad = good;
+  bad["target"] = "/etc/passwd";
+  expect_error(bad, "dump.json", "clouds.target");
+  bad = good;
+  bad["points"] = {0, 4};
+  expect_error(bad, "dump.json", "clouds.points[0] = 0");
+  bad = good;
+  bad["points"] = {1LL << 40, 4};
+  expect_error(bad, "dump.json", "clouds.points[0]");
+  bad = good;
+  bad["source"] = "missing.bin";
+  expect_error(bad, "missing.bin", "cannot read");
+  expect_error(nlohmann::json("source_cloud.bin"), "dump.json", "clouds is not an object");
+  // A non-finite coordinate names its point and field; a torn file is not whole records.
+  {
+    std::fstream f(dir / "source_cloud.bin", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(2 * 16 + 4);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    f.write(reinterpret_cast<const char*>(&nan), sizeof nan);
+  }
+  expect_error(good, "source_cloud.bin", "point 2 field y");
+  {
+    std::fstream f(dir / "source_cloud.bin", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(2 * 16 + 4);
+    f.write(reinterpret_cast<const char*>(&c.source[2].y()), sizeof(float));
+  }
+  fs::resize_file(dir / "target_cloud.bin", 4 * 16 - 3);
+  expect_error(good, "target_cloud.bin", "61 bytes");
+  // Without the entry: no clouds, as before.
+  nlohmann::json plain = meta;
+  plain.erase("clouds");
+  std::ofstream(dir / "dump.json") << plain.dump();
+  EXPECT_FALSE(read_dump(dir.string()).clouds.has_value());
   fs::remove_all(dir);
 }
 

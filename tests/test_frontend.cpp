@@ -7,8 +7,10 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <tuple>
 
 #include "core/metrics.hpp"
+#include "acceptance/dense_check.hpp"
 #include "frontend/bev.hpp"
 #include "frontend/bshot.hpp"
 #include "frontend/extract.hpp"
@@ -16,6 +18,7 @@
 #include "frontend/matching.hpp"
 #include "harness/builtin.hpp"
 #include "solvers/registry.hpp"
+#include "test_util.hpp"
 
 namespace verifybench {
 namespace {
@@ -535,6 +538,123 @@ TEST(Extract, RealKittiPairsAcceptThePositiveAndRejectTheNegative) {
         },
         neg.set);
   }
+}
+
+// `run`'s dense check on dumps that keep their clouds (extract --keep-clouds), against motions the
+// test draws: a scene of walls and boxes seen from two frames; one correspondence set follows the
+// true motion, the other a rigid alias (every match consistent with a motion 9 m and 70 deg off,
+// the failure of repetitive structure). The calibrated rule accepts both; the kept clouds refute
+// the alias and keep the truth, and without clouds, with --dense-overlap 0 or under the count
+// rule (the paper's: no check) the alias stands.
+TEST(KeptClouds, RunsDenseCheckRejectsARigidAliasAndKeepsTheTruth) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Eigen::Vector3d> world;  // in the target frame: two walls and 40 boxes, 0.2 m apart
+  for (double a = -20; a <= 20; a += 0.2) {
+    for (double z = 0; z <= 5; z += 0.2) {
+      world.emplace_back(a, 20.0, z);
+      world.emplace_back(-20.0, a, z);
+    }
+  }
+  for (int b = 0; b < 40; ++b) {
+    const double cx = -18 + 36 * u(rng), cy = -18 + 36 * u(rng), h = 1 + 3 * u(rng);
+    const double w = 0.6 + 1.4 * u(rng);
+    for (double d = 0; d <= w; d += 0.2) {
+      for (double z = 0; z <= h; z += 0.2) {
+        world.emplace_back(cx + d, cy, z);
+        world.emplace_back(cx, cy + d, z);
+        world.emplace_back(cx + d, cy + w, z);
+      }
+    }
+  }
+  Rigid<3> T_true = Rigid<3>::Identity();
+  T_true.linear() = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T_true.translation() = Eigen::Vector3d(2.0, -3.0, 0.0);
+  Rigid<3> T_alias = T_true;
+  T_alias.linear() = Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
+                     T_true.linear();
+  T_alias.translation() += Eigen::Vector3d(9.0, 0.0, 0.0);
+  DumpClouds clouds;
+  for (const auto& p : world) {
+    clouds.target.push_back(p.cast<float>());
+    clouds.source.push_back((T_true.inverse() * p).cast<float>());
+  }
+  // 60 matches of source points under `T` (noise 2 cm) among 240 uniform outliers.
+  auto set_for = [&](const Rigid<3>& T, bool is_truth) {
+    LabeledSet<3> s;
+    const int inliers = 60, n = 300;
+    s.corr.source.resize(3, n);
+    s.corr.target.resize(3, n);
+    std::normal_distribution<double> noise(0.0, 0.02);
+    for (int i = 0; i < n; ++i) {
+      const auto& m = clouds.source[static_cast<std::size_t>(rng() % clouds.source.size())];
+      s.corr.source.col(i) = m.cast<double>();
+      if (i < inliers) {
+        s.corr.target.col(i) =
+            T * m.cast<double>() + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      } else {
+        s.corr.target.col(i) = Eigen::Vector3d(-20 + 40 * u(rng), -20 + 40 * u(rng), 5 * u(rng));
+      }
+      s.truth.labels.push_back(is_truth && i < inliers ? 1 : 0);
+    }
+    s.truth.T_target_source = T_true;
+    return s;
+  };
+  const fs::path root = fs::temp_directory_path() / "vb_kept_clouds";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  auto dump_of = [&](const Rigid<3>& T, bool is_truth, const std::string& name, bool keep) {
+    Dump d;
+    d.set = set_for(T, is_truth);
+    if (keep) d.clouds = clouds;
+    write_dump((root / name).string(), d);
+    return (root / name).string();
+  };
+  const std::string truth = dump_of(T_true, true, "truth", true);
+  const std::string alias = dump_of(T_alias, false, "alias", true);
+  const std::string bare = dump_of(T_alias, false, "alias_bare", false);
+  auto run = [&](const std::string& dump, const std::string& extra, const std::string& tag) {
+    const fs::path out = root / (tag + ".json");
+    const auto r = test::run_cli("run --dump " + dump + " --solvers clique,ransac --eps 0.2 " +
+                                 "--time-limit 10 --quiet " + extra + " --out " + out.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream in(out);
+    return nlohmann::json::parse(in);
+  };
+  const auto t = run(truth, "", "truth");
+  EXPECT_EQ(t["parameters"]["run"]["dense_check"]["min_overlap"].get<double>(),
+            kDefaultMinOverlap);
+  for (const auto& row : t["results"]) {
+    EXPECT_TRUE(row["accepted"].get<bool>()) << row.dump();
+    ASSERT_TRUE(row["dense_check"].is_object()) << row.dump();
+    EXPECT_GT(row["dense_check"]["overlap"].get<double>(), 0.9) << row.dump();
+    EXPECT_EQ(row["decision"], "TP");
+  }
+  const auto a = run(alias, "", "alias");
+  for (const auto& row : a["results"]) {
+    EXPECT_FALSE(row["accepted"].get<bool>()) << row.dump();
+    EXPECT_LT(row["p_value"].get<double>(), 1e-6) << row.dump();  // the rule alone accepts it
+    ASSERT_TRUE(row["dense_check"].is_object()) << row.dump();
+    EXPECT_LT(row["dense_check"]["overlap"].get<double>(), kDefaultMinOverlap) << row.dump();
+    EXPECT_NE(row["message"].get<std::string>().find("dense check"), std::string::npos);
+    EXPECT_EQ(row["decision"], "TN");
+    std::printf("alias, %s: overlap %.3f after ICP\n", row["solver"].get<std::string>().c_str(),
+                row["dense_check"]["overlap"].get<double>());
+  }
+  for (const auto& [dump, extra, tag] :
+       {std::tuple{bare, std::string(), "bare"}, std::tuple{alias, std::string("--dense-overlap 0"), "off"},
+        std::tuple{alias, std::string("--accept count"), "count"}}) {
+    const auto r = run(dump, extra, tag);
+    EXPECT_TRUE(r["parameters"]["run"]["dense_check"].is_null() ||
+                r["parameters"]["run"]["dense_check"]["min_overlap"].get<double>() == 0.0)
+        << tag;
+    for (const auto& row : r["results"]) {
+      EXPECT_TRUE(row["accepted"].get<bool>()) << tag << " " << row.dump();
+      EXPECT_TRUE(row["dense_check"].is_null()) << tag;
+      EXPECT_EQ(row["decision"], "FP") << tag;
+    }
+  }
+  fs::remove_all(root);
 }
 
 }  // namespace

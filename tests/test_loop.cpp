@@ -22,7 +22,7 @@
 #include "frontend/scan_odometry.hpp"
 #include "generators/lidar.hpp"
 #include "generators/odometry.hpp"
-#include "loop/dense_check.hpp"
+#include "acceptance/dense_check.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/pose_graph.hpp"
 #include "loop/retrieval.hpp"
@@ -1138,14 +1138,14 @@ TEST(DenseCheck, IcpReturnsToTheDrawnMotionAndAnAliasOverlapsLittle) {
       near.linear() *
       Eigen::AngleAxisd(2.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   near.translation() += Eigen::Vector3d(0.3, 0.2, 0.0);
-  const vb::DenseCheck good = vb::dense_check(query, match, near, params);
+  const vb::DenseCheck good = vb::dense_check(query.points, match.points, near, params);
   ASSERT_TRUE(good.icp.converged);
   EXPECT_LT((good.icp.T_target_source.translation() - T_match_query.translation()).norm(), 0.1);
   EXPECT_LT(vb::rotation_error_deg<3>(good.icp.T_target_source, T_match_query), 0.5);
   EXPECT_GT(good.overlap, 0.9);
   vb::Rigid<3> alias = T_match_query;
   alias.translation() += Eigen::Vector3d(8.0, 0.0, 0.0);
-  const vb::DenseCheck bad = vb::dense_check(query, match, alias, params);
+  const vb::DenseCheck bad = vb::dense_check(query.points, match.points, alias, params);
   EXPECT_LT(bad.overlap, 0.8);
   EXPECT_LT(bad.overlap, good.overlap - 0.15);
   params.min_overlap = 1.0;

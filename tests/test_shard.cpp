@@ -149,6 +149,25 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   r.T_target_source = {1, 0, 0.5, 0, 1, -0.25, 0, 0, 1};
   const json j = vb::to_json(r);
   EXPECT_EQ(vb::to_json(vb::trial_from_json(json::parse(j.dump()))), j);
+  EXPECT_TRUE(j["dense_check"].is_null());
+  {  // The dense check's figures, an unconverged ICP's fitness (null) included.
+    vb::TrialRecord d = r;
+    d.dense_overlap = 0.1 + 0.2;
+    d.dense_icp_converged = true;
+    d.dense_icp_fitness = 0.0625;
+    d.dense_ms = 12.5;
+    d.dense_T_target_source = {1, 0, 0, 0.5, 0, 1, 0, -0.25, 0, 0, 1, 0, 0, 0, 0, 1};
+    const json jd = vb::to_json(d);
+    const vb::TrialRecord back = vb::trial_from_json(json::parse(jd.dump()));
+    EXPECT_EQ(back.dense_overlap, d.dense_overlap);
+    EXPECT_EQ(back.dense_T_target_source, d.dense_T_target_source);
+    EXPECT_EQ(vb::to_json(back), jd);
+    d.dense_icp_converged = false;
+    d.dense_icp_fitness = vb::TrialRecord::kNaN;
+    const json jn = vb::to_json(d);
+    EXPECT_TRUE(jn["dense_check"]["icp_fitness_m2"].is_null());
+    EXPECT_EQ(vb::to_json(vb::trial_from_json(json::parse(jn.dump()))), jn);
+  }
   vb::CliqueRecord c;
   c.graph = "g.clq";
   c.algorithm = "bbmc";

@@ -18,6 +18,9 @@
 #include <variant>
 
 #include "acceptance/calibration.hpp"
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+#include "acceptance/dense_check.hpp"
+#endif
 #include "acceptance/prior_gate.hpp"
 #include "acceptance/verify.hpp"
 #include "core/transform.hpp"
@@ -120,11 +123,58 @@ std::optional<vb::PosePrior<Dim>> pose_prior(const std::optional<Array>& T,
   return prior;  // the covariance is checked by validate(correspondences)
 }
 
+/// What solve() takes as keywords: the solver's settings and the accept rule's, read through one
+/// table of the CLI's rows (solvers/params.hpp, acceptance/accept_params.hpp).
+struct Settings {
+  vb::SolverParams solver;
+  vb::AcceptParams accept;
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  vb::DenseCheckParams dense;  ///< with source_cloud / target_cloud
+#endif
+};
+/// An (n, 3) array of points as a cloud for the dense check; a ValueError names a bad one.
+std::vector<Eigen::Vector3f> cloud_of(const Array& a, const char* what) {
+  if (a.ndim() != 2 || a.shape(1) != 3 || a.shape(0) < 1) {
+    throw std::invalid_argument(std::string(what) + " must be an (n, 3) array with n >= 1");
+  }
+  const auto v = a.unchecked<2>();
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(static_cast<std::size_t>(a.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    const Eigen::Vector3d p(v(i, 0), v(i, 1), v(i, 2));
+    if (!p.allFinite()) {
+      throw std::invalid_argument(std::string(what) + "[" + std::to_string(i) + "] is not finite");
+    }
+    out.push_back(p.cast<float>());
+  }
+  return out;
+}
+
+struct Clouds {
+  std::optional<Array> source, target;
+};
+
 template <int Dim>
 py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
                    const std::optional<Array>& scores, const std::optional<Array>& prior_T,
-                   const std::optional<Array>& prior_cov, const vb::SolverParams& params,
-                   const vb::AcceptParams& accept) {
+                   const std::optional<Array>& prior_cov, const Settings& settings,
+                   const Clouds& clouds) {
+  const vb::SolverParams& params = settings.solver;
+  const vb::AcceptParams& accept = settings.accept;
+  if (clouds.source.has_value() != clouds.target.has_value()) {
+    throw std::invalid_argument("source_cloud and target_cloud come together");
+  }
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  std::vector<Eigen::Vector3f> source_cloud, target_cloud;
+  if (clouds.source) {
+    source_cloud = cloud_of(*clouds.source, "source_cloud");
+    target_cloud = cloud_of(*clouds.target, "target_cloud");
+  }
+#else
+  if (clouds.source) {
+    throw std::invalid_argument("source_cloud: this build has no dense check (no front end)");
+  }
+#endif
   vb::Correspondences<Dim> corr;
   corr.prior = pose_prior<Dim>(prior_T, prior_cov);
   corr.source = columns<Dim>(src, "src");
@@ -144,6 +194,33 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
     py::gil_scoped_release unlocked;  // other Python threads run while the C++ search does
     v = vb::verify(*solver, corr, params, accept);
   }
+  py::object dense = py::none();
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  // The dense check where the clouds are given (acceptance/dense_check.hpp), as `run` does it on a
+  // dump's kept clouds: on a pair the rule accepted, at the rule's threshold.
+  const double min_overlap = settings.dense.min_overlap_for(accept.rule);
+  if (!source_cloud.empty() && v.result.accepted && min_overlap > 0.0) {
+    vb::Rigid<3> T = vb::Rigid<3>::Identity();
+    T.matrix().template topLeftCorner<Dim, Dim>() = v.result.T_target_source.linear();
+    T.matrix().template block<Dim, 1>(0, 3) = v.result.T_target_source.translation();
+    vb::DenseCheck d;
+    {
+      py::gil_scoped_release unlocked;
+      d = vb::dense_check(source_cloud, target_cloud, T, settings.dense);
+    }
+    py::dict check;
+    check["overlap"] = d.overlap;
+    check["icp_converged"] = d.icp.converged;
+    check["icp_fitness_m2"] = d.icp.fitness;
+    check["ms"] = d.ms;
+    check["T_refined"] = matrix<3>(d.icp.T_target_source);
+    dense = check;
+    if (!(d.overlap > min_overlap)) {
+      v.result.accepted = false;
+      if (v.result.status == vb::Status::ok) v.result.status = vb::Status::rejected;
+    }
+  }
+#endif
   const vb::Result<Dim>& result = v.result;
   const std::optional<vb::Calibration>& calibration = v.calibration;
   const double ms = v.solve_ms;
@@ -183,15 +260,10 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["runner_up_p"] = u ? py::object(py::float_(u->p_value)) : py::object(py::none());
   out["runner_up_separation"] = u ? py::object(py::float_(u->separation)) : py::object(py::none());
   out["runner_up_ambiguous"] = u ? u->ambiguous : false;
+  out["dense_check"] = dense;
   return out;
 }
 
-/// What solve() takes as keywords: the solver's settings and the accept rule's, read through one
-/// table of the CLI's rows (solvers/params.hpp, acceptance/accept_params.hpp).
-struct Settings {
-  vb::SolverParams solver;
-  vb::AcceptParams accept;
-};
 using SettingRow = vb::ParamRow<Settings>;
 
 std::vector<SettingRow> make_setting_rows() {
@@ -201,6 +273,9 @@ std::vector<SettingRow> make_setting_rows() {
   std::vector<SettingRow> rows = vb::lift_rows(
       std::vector<vb::ParamField>(solver.begin(), solver.begin() + common), &Settings::solver);
   for (auto& r : vb::lift_rows(vb::accept_param_rows(), &Settings::accept)) rows.push_back(r);
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  for (auto& r : vb::lift_rows(vb::dense_check_param_rows(), &Settings::dense)) rows.push_back(r);
+#endif
   for (auto& r : vb::lift_rows(std::vector<vb::ParamField>(solver.begin() + common, solver.end()),
                                &Settings::solver)) {
     rows.push_back(r);
@@ -291,15 +366,20 @@ Settings settings_from(const py::kwargs& given) {
 
 py::dict solve(const std::string& name, const Array& src, const Array& dst,
                const std::optional<Array>& scores, const std::optional<Array>& prior_T,
-               const std::optional<Array>& prior_cov, std::uint64_t seed,
+               const std::optional<Array>& prior_cov, const std::optional<Array>& source_cloud,
+               const std::optional<Array>& target_cloud, std::uint64_t seed,
                const py::kwargs& settings) {
   const int dim = dimension_of(src, dst);
   Settings s = settings_from(settings);
   s.solver.seed = seed;
   s.solver.validate();
   s.accept.validate();
-  return dim == 2 ? solve_dim<2>(name, src, dst, scores, prior_T, prior_cov, s.solver, s.accept)
-                  : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, s.solver, s.accept);
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  s.dense.validate();
+#endif
+  const Clouds clouds{source_cloud, target_cloud};
+  return dim == 2 ? solve_dim<2>(name, src, dst, scores, prior_T, prior_cov, s, clouds)
+                  : solve_dim<3>(name, src, dst, scores, prior_T, prior_cov, s, clouds);
 }
 
 /// Rows as Python dicts: keyword, CLI option, report key, kind, default (of `defaults`), range, help.
@@ -416,6 +496,17 @@ py::dict read_dump(const std::string& dir) {
   out["label_threshold"] =
       dump.label_threshold ? py::object(py::float_(*dump.label_threshold)) : py::object(py::none());
   out["path"] = dir;
+  // The clouds `extract --keep-clouds` kept, as (n, 3) arrays (solve()'s source_cloud and
+  // target_cloud); None without.
+  auto points = [](const std::vector<Eigen::Vector3f>& c) {
+    py::array_t<double> a({static_cast<py::ssize_t>(c.size()), py::ssize_t{3}});
+    auto v = a.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < c.size(); ++i)
+      for (int d = 0; d < 3; ++d) v(static_cast<py::ssize_t>(i), d) = c[i][d];
+    return a;
+  };
+  out["source_cloud"] = dump.clouds ? py::object(points(dump.clouds->source)) : py::object(py::none());
+  out["target_cloud"] = dump.clouds ? py::object(points(dump.clouds->target)) : py::object(py::none());
   return out;
 }
 
@@ -439,7 +530,8 @@ PYBIND11_MODULE(_core, m) {
   }, "Names of the synthetic generator kinds.");
   m.def("solve", &solve, py::arg("solver"), py::arg("src"), py::arg("dst"), py::kw_only(),
         py::arg("scores") = py::none(), py::arg("prior_T") = py::none(),
-        py::arg("prior_cov") = py::none(), py::arg("seed") = 1,
+        py::arg("prior_cov") = py::none(), py::arg("source_cloud") = py::none(),
+        py::arg("target_cloud") = py::none(), py::arg("seed") = 1,
         "Runs one registered solver on correspondences src[i] -> dst[i] ((n, 2) or (n, 3) arrays).\n"
         "Every solver setting of the CLI is a keyword (the option with '-' as '_': eps,\n"
         "inlier_threshold, accept, alpha, time_limit, ransac_iterations, ...; settings() lists\n"
@@ -449,7 +541,11 @@ PYBIND11_MODULE(_core, m) {
         "provisional, runner_up, runner_up_p, runner_up_separation (None unless runner_up_alpha > 0\n"
         "ran the test), runner_up_ambiguous. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1)\n"
         "guess and the 3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under\n"
-        "'pvalue' a motion outside its chi-square gate at prior_gate is not accepted.");
+        "'pvalue' a motion outside its chi-square gate at prior_gate is not accepted.\n"
+        "source_cloud, target_cloud: the two scans ((k, 3) arrays, each in its own frame; read_dump()\n"
+        "returns a dump's kept ones), both or neither: an accepted motion is refined by ICP and kept\n"
+        "only when the clouds overlap by more than dense_overlap (the dense check of `run`);\n"
+        "dense_check: its overlap, icp_converged, icp_fitness_m2, ms, T_refined (None where it did not run).");
   m.def("generator_settings", &generator_settings_list,
         "Every shape setting synthetic() takes, as `sweep` declares it: keyword, option, key, kind, "
         "default, min, max, help.");
@@ -476,5 +572,6 @@ PYBIND11_MODULE(_core, m) {
       "prior_rot_deg [deg] and prior_trans [m], as sweep's --prior-rot-deg / --prior-trans; None "
       "without).");
   m.def("read_dump", &read_dump, py::arg("path"),
-        "A correspondence dump folder (dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt]).");
+        "A correspondence dump folder (dump.json + matches.tsv, or corr.txt [label.txt] [GTmat.txt]); "
+        "source_cloud / target_cloud: the clouds it kept (extract --keep-clouds), else None.");
 }

@@ -19,6 +19,8 @@ def solve(
     scores: Optional[npt.ArrayLike] = None,
     prior_T: Optional[npt.ArrayLike] = None,
     prior_cov: Optional[npt.ArrayLike] = None,
+    source_cloud: Optional[npt.ArrayLike] = None,
+    target_cloud: Optional[npt.ArrayLike] = None,
     seed: int = 1,
     **settings: Any,
 ) -> Dict[str, Any]: ...

@@ -146,6 +146,41 @@ def test_runner_up_test_rejects_a_corridors_shifted_copies():
     assert r["runner_up_separation"] > 10.0
 
 
+def test_dense_check_refines_with_the_clouds_and_refutes_an_alias():
+    # The clouds two scans would give: three orthogonal planes of a 20 m corner, the target's the
+    # source's moved 1 m along x. 40 matches follow that motion among 40 drawn at random.
+    if not any(r["keyword"] == "dense_overlap" for r in vb.settings()):
+        pytest.skip("built without the front end (no dense check)")
+    rng = np.random.default_rng(7)
+    a, b = rng.uniform(0, 20, 3000), rng.uniform(0, 20, 3000)
+    k = rng.integers(0, 3, 3000)
+    cloud = np.where((k == 0)[:, None], np.c_[a, b, 0 * a],
+                     np.where((k == 1)[:, None], np.c_[a, 0 * a, b], np.c_[0 * a, a, b]))
+    shift = np.array([1.0, 0.0, 0.0])
+    src = np.vstack([cloud[rng.choice(3000, 40, replace=False)], cloud[rng.choice(3000, 40)]])
+    dst = np.vstack([src[:40] + shift, rng.uniform(0, 20, (40, 3))])
+    plain = vb.solve("clique", src, dst, eps=0.2)
+    assert plain["accepted"] and plain["dense_check"] is None
+    kept = vb.solve("clique", src, dst, eps=0.2, source_cloud=cloud, target_cloud=cloud + shift)
+    assert kept["accepted"] and kept["dense_check"]["overlap"] > 0.9
+    assert np.allclose(kept["dense_check"]["T_refined"][:3, 3], shift, atol=0.05)
+    apart = vb.solve("clique", src, dst, eps=0.2, source_cloud=cloud,
+                     target_cloud=cloud + [50.0, 0.0, 0.0])
+    assert not apart["accepted"] and apart["status"] == "rejected"
+    assert apart["dense_check"]["overlap"] < 0.1
+    # Off: dense_overlap=0, or the count rule (the paper's).
+    for keywords in ({"dense_overlap": 0.0}, {"accept": "count"}):
+        r = vb.solve("clique", src, dst, eps=0.2, source_cloud=cloud,
+                     target_cloud=cloud + [50.0, 0.0, 0.0], **keywords)
+        assert r["accepted"] and r["dense_check"] is None, keywords
+    with pytest.raises(ValueError, match="come together"):
+        vb.solve("clique", src, dst, source_cloud=cloud)
+    bad = cloud.copy()
+    bad[5, 1] = np.nan
+    with pytest.raises(ValueError, match=r"target_cloud\[5\] is not finite"):
+        vb.solve("clique", src, dst, source_cloud=cloud, target_cloud=bad)
+
+
 def test_generators_are_seeded():
     a = vb.synthetic(n=50, seed=3)
     b = vb.synthetic(n=50, seed=3)
@@ -252,11 +287,13 @@ def test_synthetic_takes_the_generators_shape_and_a_prior():
 
 
 def cli_defaults():
-    """Each option's default as `verifybench sweep --help` prints it: {"--eps": "0.1", ...}."""
+    """Each option's default as `verifybench sweep --help` and `run --help` (the dense check's
+    options, in a build with the front end) print it: {"--eps": "0.1", ...}."""
     cli = os.environ.get("VERIFYBENCH_CLI")
     if not cli:
         pytest.skip("VERIFYBENCH_CLI is not set")
-    text = subprocess.run([cli, "sweep", "--help"], check=True, capture_output=True, text=True).stdout
+    text = "\n".join(subprocess.run([cli, command, "--help"], check=True, capture_output=True,
+                                    text=True).stdout for command in ("sweep", "run"))
     out = {}
     for line in text.splitlines():
         words = line.split()

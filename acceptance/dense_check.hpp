@@ -1,17 +1,17 @@
 #pragma once
-// The dense check of a closure (issue #31, item 3): the loop has both local maps, so a fitted
-// motion can be tested against the clouds themselves. A short generalized ICP from the motion
-// (frontend/refine.hpp), then the overlap of the two maps under the refined motion: the share of
-// occupied cells they have in common, of the smaller map, |A n B| / min(|A|, |B|), as the ground
-// truth measures it (loop/local_maps.hpp). A rigid alias (a motion that a repetitive part of the
-// scene agrees with) leaves the rest of the maps apart; KISS-SLAM accepts a closure only above an
-// overlap of 0.4 after ICP. Applied after the accept rule to the pairs it accepted: by default
-// under the calibrated rule (the default rule) at kDefaultMinOverlap, not under the count rule
-// (the paper's); --dense-overlap sets it for either, 0 = off.
+// The dense check of an accepted motion where both clouds are at hand (issue #31, item 3): the
+// loop's two local maps, or the two clouds a dump kept (`extract --keep-clouds`). A short
+// generalized ICP from the fitted motion (frontend/refine.hpp), then the overlap of the two clouds
+// under the refined motion: of the smaller one (in occupied cells), the share the other covers
+// within a cell, |A n B| / min(|A|, |B|), as the loop's ground truth measures it
+// (loop/local_maps.hpp). A rigid alias (a motion that a repetitive part of the scene agrees with)
+// leaves the rest of the clouds apart; KISS-SLAM accepts a closure only above an overlap of 0.4
+// after ICP. Applied after the accept rule to the pairs it accepted: by default under the
+// calibrated rule (the default rule) at kDefaultMinOverlap, not under the count rule (the
+// paper's); --dense-overlap sets it for either, 0 = off. Built with the front end (PCL).
 #include "acceptance/accept_params.hpp"
 #include "core/param_rows.hpp"
 #include "frontend/refine.hpp"
-#include "loop/local_maps.hpp"
 
 namespace verifybench {
 
@@ -43,12 +43,13 @@ const std::vector<ParamRow<DenseCheckParams>>& dense_check_param_rows();
 
 struct DenseCheck {
   bool ran = false;
-  RefineResult icp;    ///< the refined motion (match <- query)
-  double overlap = 0;  ///< of the maps under the refined motion
+  RefineResult icp;    ///< the refined motion (target <- source)
+  double overlap = 0;  ///< of the clouds under the refined motion
+  double ms = 0;       ///< ICP and overlap, wall time
 };
 
-/// The check of `T_match_query` between two maps (their points in their own frames).
-DenseCheck dense_check(const LocalMap& query, const LocalMap& match, const Rigid<3>& T_match_query,
+/// The check of `T_target_source` between two clouds (each in its own frame).
+DenseCheck dense_check(const Cloud& source, const Cloud& target, const Rigid<3>& T_target_source,
                        const DenseCheckParams& params);
 
 }  // namespace verifybench

@@ -1,4 +1,4 @@
-#include "loop/dense_check.hpp"
+#include "acceptance/dense_check.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "core/timer.hpp"
 
 namespace verifybench {
 
@@ -87,15 +89,17 @@ double covered(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::V
 
 }  // namespace
 
-DenseCheck dense_check(const LocalMap& query, const LocalMap& match, const Rigid<3>& T_match_query,
+DenseCheck dense_check(const Cloud& source, const Cloud& target, const Rigid<3>& T_target_source,
                        const DenseCheckParams& params) {
+  StopWatch clock;
   DenseCheck out;
   out.ran = true;
-  out.icp = refine_icp(query.points, match.points, T_match_query, params.icp);
-  const auto q = centroids(query.points, out.icp.T_target_source, params.cell);
-  const auto m = centroids(match.points, Rigid<3>::Identity(), params.cell);
+  out.icp = refine_icp(source, target, T_target_source, params.icp);
+  const auto q = centroids(source, out.icp.T_target_source, params.cell);
+  const auto m = centroids(target, Rigid<3>::Identity(), params.cell);
   // Of the smaller map, the share that the other one covers within a cell.
   out.overlap = q.size() <= m.size() ? covered(q, m, params.cell) : covered(m, q, params.cell);
+  out.ms = clock.ms();
   return out;
 }
 
@@ -115,15 +119,15 @@ const std::vector<ParamRow<DenseCheckParams>>& dense_check_param_rows() {
   };
   static const std::vector<ParamRow<P>> rows = {
       field_row(&P::min_overlap, "dense-overlap", "min_overlap", "F",
-                "dense check of the pairs the accept rule accepted: ICP from the fitted motion, "
-                "then accept only when the maps' occupied cells overlap by more than F of the "
-                "smaller map (0 = off, the paper's setting; -1 = the rule's default: 0.56 under "
+                "dense check of the pairs the accept rule accepted, where the clouds are known (the "
+                "loop's maps, a dump's kept clouds): ICP from the fitted motion, then accept only "
+                "when their occupied cells overlap by more than F of the smaller one (0 = off, the paper's setting; -1 = the rule's default: 0.56 under "
                 "--accept pvalue, off under count)",
                 -1.0, 0.999, "a value in [0, 0.999], or -1 (the rule's default)"),
       field_row(&P::cell, "dense-cell", "cell_m", "M", "dense check: overlap cell size", 1e-3, 1e3,
                 "a value in [0.001, 1000]"),
       nested(&RefineParams::voxel, "dense-icp-voxel", "icp_voxel_m",
-             "dense check: both maps voxelised for ICP"),
+             "dense check: both clouds voxelised for ICP"),
       nested(&RefineParams::max_correspondence, "dense-icp-distance", "icp_max_distance_m",
              "dense check: ICP correspondence distance")};
   return rows;
