@@ -27,9 +27,11 @@ int cmd_extract(const std::vector<std::string>& args) {
       .text("out", out, "DIR", "dump folder to create (required; must not exist)")
       .flag("keep-clouds", p.keep_clouds,
             "keep both clouds in the dump (source_cloud.bin, target_cloud.bin) for run's dense "
-            "check of an accepted motion")
+            "check of an accepted motion (the default)")
+      .flag("no-clouds", "leave the clouds out (a dump of the matches alone; run then decides "
+            "by the accept rule only)", [&p] { p.keep_clouds = false; })
       .real("cloud-voxel", p.cloud_voxel, "M",
-            "--keep-clouds: one point per cell of this grid (0 = every point as read)", 0.0, 1e3);
+            "kept clouds: one point per cell of this grid (0 = every point as read)", 0.0, 1e3);
   o.group("front end (the same options as `verifybench loop`)");
   cli::add_rows(o, frontend_param_rows(), p);
   if (o.parse_or_help(args,

@@ -35,8 +35,9 @@ struct ExtractParams {
   HbstParams hbst;
   double label_threshold = 1.0;  ///< [m]; the paper's eps in 3D
   /// extract(): keep both clouds in the dump (datasets/dump_clouds.hpp), thinned on a grid of
-  /// cloud_voxel (0 = as read), for the dense check of `run` (acceptance/dense_check.hpp).
-  bool keep_clouds = false;
+  /// cloud_voxel (0 = as read), for the dense check of `run` (acceptance/dense_check.hpp): on by
+  /// default, so that a dump is decided by the default rule with everything it needs.
+  bool keep_clouds = true;
   double cloud_voxel = 0.25;  ///< [m]
 };
 

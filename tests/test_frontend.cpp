@@ -3,14 +3,16 @@
 // extraction on a drawn scene with a known motion (the motion is recovered).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <tuple>
 
-#include "core/metrics.hpp"
 #include "acceptance/dense_check.hpp"
+#include "core/metrics.hpp"
 #include "frontend/bev.hpp"
 #include "frontend/bshot.hpp"
 #include "frontend/extract.hpp"
@@ -205,6 +207,60 @@ TEST(Extract, RecoversAKnownMotionFromADrawnStreet3D) {
   ASSERT_TRUE(r.accepted);
   EXPECT_LT(rotation_error_deg(r.T_target_source, T), 2.0);
   EXPECT_LT(translation_error(r.T_target_source, T), 0.5);
+}
+
+// `extract` keeps both scans by default, one point per occupied 0.25 m cell (counted here from
+// the points), every point at --cloud-voxel 0, and none with --no-clouds.
+TEST(Extract, KeepsTheCloudsOnTheirGridUnlessTold) {
+  std::mt19937_64 rng(4);
+  const Cloud source = drawn_street(rng);
+  Rigid<3> T = Rigid<3>::Identity();
+  T.translation() = Eigen::Vector3d(1.0, 0.5, 0.0);
+  const Cloud target = moved(source, T, rng, 0.01);
+  const fs::path root = fs::temp_directory_path() / "vb_extract_clouds";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  auto write_bin = [&](const Cloud& c, const std::string& name) {
+    std::ofstream out(root / name, std::ios::binary);
+    for (const auto& p : c) {
+      const float r[4] = {p.x(), p.y(), p.z(), 0.0f};
+      out.write(reinterpret_cast<const char*>(r), sizeof r);
+    }
+  };
+  write_bin(source, "s.bin");
+  write_bin(target, "t.bin");
+  auto extract_to = [&](const std::string& name, const std::string& extra) {
+    const auto r = test::run_cli("extract --pipeline fpfh --voxel 0.5 --matching mutual --source " +
+                                 (root / "s.bin").string() + " --target " +
+                                 (root / "t.bin").string() + " " + extra + " --out " +
+                                 (root / name).string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return read_dump((root / name).string());
+  };
+  auto cells = [](const Cloud& c, float leaf) {
+    std::set<std::array<long long, 3>> occupied;
+    for (const auto& p : c) {
+      occupied.insert({static_cast<long long>(std::floor(p.x() / leaf)),
+                       static_cast<long long>(std::floor(p.y() / leaf)),
+                       static_cast<long long>(std::floor(p.z() / leaf))});
+    }
+    return static_cast<double>(occupied.size());
+  };
+  const Dump kept = extract_to("kept", "");
+  ASSERT_TRUE(kept.clouds.has_value());
+  EXPECT_EQ(kept.clouds->voxel, 0.25);
+  EXPECT_NEAR(static_cast<double>(kept.clouds->source.size()), cells(source, 0.25f),
+              0.002 * cells(source, 0.25f));
+  EXPECT_NEAR(static_cast<double>(kept.clouds->target.size()), cells(target, 0.25f),
+              0.002 * cells(target, 0.25f));
+  const Dump all = extract_to("all", "--cloud-voxel 0");
+  ASSERT_TRUE(all.clouds.has_value());
+  EXPECT_EQ(all.clouds->source, source);
+  EXPECT_EQ(all.clouds->target, target);
+  const Dump none = extract_to("none", "--no-clouds");
+  EXPECT_FALSE(none.clouds.has_value());
+  EXPECT_FALSE(fs::exists(root / "none" / "source_cloud.bin"));
+  fs::remove_all(root);
 }
 
 TEST(Extract, RecoversAKnownMotionFromADrawnStreet2D) {
