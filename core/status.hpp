@@ -10,7 +10,7 @@ namespace verifybench {
 /// A solver's result and a report row (solvers/solver.hpp, reports/record.hpp).
 enum class Status {
   ok,          ///< search completed and the pair is accepted
-  rejected,    ///< search completed; fewer inliers than the accept threshold
+  rejected,    ///< search completed; the accept rule (or a check after it) said no
   time_limit,  ///< limit reached; the result is the best found so far (accepted may still be true)
   error,       ///< the solver could not run (see message)
 };

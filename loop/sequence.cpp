@@ -343,6 +343,7 @@ void judge_row(const LoopConfig& config, const LocalMap& q, const LocalMap& m, b
     row.dense = dense_check(q.points, m.points, row.T_estimate, config.dense);
     if (!(row.dense.overlap > min_overlap)) {
       row.record.accepted = false;
+      if (row.record.status == Status::ok) row.record.status = Status::rejected;  // as run's rows
       row.record.message = "dense check: overlap " + std::to_string(row.dense.overlap) +
                            " after ICP, not above " + std::to_string(min_overlap);
     }
