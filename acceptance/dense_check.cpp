@@ -121,8 +121,9 @@ const std::vector<ParamRow<DenseCheckParams>>& dense_check_param_rows() {
       field_row(&P::min_overlap, "dense-overlap", "min_overlap", "F",
                 "dense check of the pairs the accept rule accepted, where the clouds are known (the "
                 "loop's maps, a dump's kept clouds): ICP from the fitted motion, then accept only "
-                "when their occupied cells overlap by more than F of the smaller one (0 = off, the paper's setting; -1 = the rule's default: 0.56 under "
-                "--accept pvalue, off under count)",
+                "when their occupied cells overlap by more than F of the smaller one (0 = off, "
+                "the paper's setting; -1 = the rule's default: under --accept pvalue 0.56 for the "
+                "loop's maps, 0.4 for a dump's scans; off under count)",
                 -1.0, 0.999, "a value in [0, 0.999], or -1 (the rule's default)"),
       field_row(&P::cell, "dense-cell", "cell_m", "M", "dense check: overlap cell size", 1e-3, 1e3,
                 "a value in [0.001, 1000]"),

@@ -40,6 +40,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   cli::add_prior_options(o, "the set (it needs a ground truth)", prior_options);
 #ifdef VERIFYBENCH_HAVE_DENSE_CHECK
   DenseCheckParams dense;
+  dense.clouds = DenseCheckParams::Clouds::scans;  // a dump keeps two single scans
   o.group("dense check (dumps with clouds: extract --keep-clouds)");
   cli::add_rows(o, dense_check_param_rows(), dense);
 #endif

@@ -679,7 +679,7 @@ TEST(KeptClouds, RunsDenseCheckRejectsARigidAliasAndKeepsTheTruth) {
   };
   const auto t = run(truth, "", "truth");
   EXPECT_EQ(t["parameters"]["run"]["dense_check"]["min_overlap"].get<double>(),
-            kDefaultMinOverlap);
+            kDefaultScanOverlap);
   for (const auto& row : t["results"]) {
     EXPECT_TRUE(row["accepted"].get<bool>()) << row.dump();
     ASSERT_TRUE(row["dense_check"].is_object()) << row.dump();
@@ -691,7 +691,7 @@ TEST(KeptClouds, RunsDenseCheckRejectsARigidAliasAndKeepsTheTruth) {
     EXPECT_FALSE(row["accepted"].get<bool>()) << row.dump();
     EXPECT_LT(row["p_value"].get<double>(), 1e-6) << row.dump();  // the rule alone accepts it
     ASSERT_TRUE(row["dense_check"].is_object()) << row.dump();
-    EXPECT_LT(row["dense_check"]["overlap"].get<double>(), kDefaultMinOverlap) << row.dump();
+    EXPECT_LT(row["dense_check"]["overlap"].get<double>(), kDefaultScanOverlap) << row.dump();
     EXPECT_NE(row["message"].get<std::string>().find("dense check"), std::string::npos);
     EXPECT_EQ(row["decision"], "TN");
     std::printf("alias, %s: overlap %.3f after ICP\n", row["solver"].get<std::string>().c_str(),

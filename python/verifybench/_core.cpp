@@ -360,6 +360,9 @@ void read_keywords(const std::vector<vb::ParamRow<P>>& rows, const py::kwargs& g
 
 Settings settings_from(const py::kwargs& given) {
   Settings p;
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  p.dense.clouds = vb::DenseCheckParams::Clouds::scans;  // two scans, as a dump keeps them
+#endif
   read_keywords(setting_rows(), given, p, "solve", "verifybench.settings()");
   return p;
 }
