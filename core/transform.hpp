@@ -25,4 +25,13 @@ template <int Dim>
 PublishedRigid<Dim> published_rigid(const Eigen::Matrix<double, Dim + 1, Dim + 1>& M,
                                     const std::string& where);
 
+/// A planar motion as an SE(3) motion (rotation about z, translation in x-y); a 3D one as it is.
+inline Rigid<3> lift_planar(const Rigid<2>& T) {
+  Rigid<3> out = Rigid<3>::Identity();
+  out.linear().topLeftCorner<2, 2>() = T.linear();
+  out.translation().head<2>() = T.translation();
+  return out;
+}
+inline Rigid<3> lift_planar(const Rigid<3>& T) { return T; }
+
 }  // namespace verifybench

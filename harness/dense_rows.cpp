@@ -2,19 +2,19 @@
 
 #include <sstream>
 
+#include "core/transform.hpp"
+
 namespace verifybench {
 
 namespace {
 
 // The row's row-major (dim+1)^2 motion as a 3D one (a planar motion rotates about z).
+template <int Dim>
 Rigid<3> motion_of(const TrialRecord& r) {
-  Rigid<3> T = Rigid<3>::Identity();
-  const int k = r.dim + 1;
-  for (int i = 0; i < r.dim; ++i) {
-    for (int j = 0; j < r.dim; ++j) T.matrix()(i, j) = r.T_target_source[i * k + j];
-    T.matrix()(i, 3) = r.T_target_source[i * k + r.dim];
-  }
-  return T;
+  Eigen::Matrix<double, Dim + 1, Dim + 1> M;
+  for (int i = 0; i <= Dim; ++i)
+    for (int j = 0; j <= Dim; ++j) M(i, j) = r.T_target_source[i * (Dim + 1) + j];
+  return lift_planar(Rigid<Dim>(M));
 }
 
 }  // namespace
@@ -27,7 +27,8 @@ void dense_check_rows(std::vector<TrialRecord>& rows, const DumpClouds& clouds,
   for (auto& r : rows) {
     const std::size_t k = static_cast<std::size_t>(r.dim + 1);
     if (!r.accepted || r.T_target_source.size() != k * k) continue;
-    const DenseCheck d = dense_check(clouds.source, clouds.target, motion_of(r), params);
+    const DenseCheck d = dense_check(clouds.source, clouds.target,
+                                      r.dim == 2 ? motion_of<2>(r) : motion_of<3>(r), params);
     r.dense_overlap = d.overlap;
     r.dense_icp_converged = d.icp.converged;
     r.dense_icp_fitness = d.icp.converged ? d.icp.fitness : TrialRecord::kNaN;

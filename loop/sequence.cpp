@@ -112,13 +112,6 @@ ExtractParams loop_extract_defaults() {
   return p;
 }
 
-Rigid<3> lift_planar(const Rigid<2>& T) {
-  Rigid<3> out = Rigid<3>::Identity();
-  out.linear().topLeftCorner<2, 2>() = T.linear();
-  out.translation().head<2>() = T.translation();
-  return out;
-}
-
 std::vector<int> select_frames(const Trajectory& truth, double spacing) {
   std::vector<int> frames;
   if (truth.empty()) return frames;

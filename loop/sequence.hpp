@@ -41,6 +41,7 @@
 #include "generators/world.hpp"
 #include "loop/consistency.hpp"
 #include "acceptance/dense_check.hpp"
+#include "core/transform.hpp"  // lift_planar
 #include "loop/relations.hpp"
 #include "loop/local_maps.hpp"
 #include "loop/odometry_calibration.hpp"
@@ -201,8 +202,6 @@ LoopRun run_loop(const LoopConfig& config, const LoopProgress& progress = {});
 std::vector<TrueClosure> true_closures(const std::vector<LocalMap>& maps, int min_map_gap,
                                        double max_distance, double min_overlap);
 
-/// A planar motion as an SE(3) motion (rotation about z, translation in x-y).
-Rigid<3> lift_planar(const Rigid<2>& T);
 
 /// The scans used: the first frame, then each frame once the path from the last one used reaches
 /// `spacing`.

@@ -200,9 +200,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   // dump's kept clouds: on a pair the rule accepted, at the rule's threshold.
   const double min_overlap = settings.dense.min_overlap_for(accept.rule);
   if (!source_cloud.empty() && v.result.accepted && min_overlap > 0.0) {
-    vb::Rigid<3> T = vb::Rigid<3>::Identity();
-    T.matrix().template topLeftCorner<Dim, Dim>() = v.result.T_target_source.linear();
-    T.matrix().template block<Dim, 1>(0, 3) = v.result.T_target_source.translation();
+    const vb::Rigid<3> T = vb::lift_planar(v.result.T_target_source);
     vb::DenseCheck d;
     {
       py::gil_scoped_release unlocked;
