@@ -34,11 +34,14 @@ std::vector<Row> make_rows() {
                 "chi-square gate at confidence C (0 = no gate)",
                 0.0, 0.999999999, "a value in [0, 1) (0 = no gate)"),
       field_row(&P::runner_up_alpha, "runner-up-alpha", "runner_up_alpha", "A",
-                "pvalue rule: reject a pair whose runner-up motion (the same solver on the "
-                "correspondences the accepted motion leaves unexplained) has p < A under the "
-                "pair's null and an excess over the null's location at least 0.4 of the pair's: a "
-                "rigid alias (0 = no runner-up test)",
-                0.0, 0.999999, "a value in [0, 1) (0 = no runner-up test)")};
+                "pvalue rule: reject a pair whose rival motions (the same solver again on the "
+                "correspondences the accepted motion and the earlier rivals leave unexplained; "
+                "each with p < A under the pair's null and an excess over the null's location "
+                "at least 0.4 of the pair's) hold together as many inliers as the accepted one: "
+                "a rigid alias (0 = no runner-up test; -1 = the rule's default: --alpha where no "
+                "dense check runs, 0 where one does)",
+                P::kRunnerUpDefault, 0.999999,
+                "a value in [0, 1), or -1 (the rule's default)")};
 }
 
 }  // namespace
@@ -52,6 +55,16 @@ const char* to_string(AcceptParams::Rule rule) {
   return rule == AcceptParams::Rule::count ? "count" : "pvalue";
 }
 
+double AcceptParams::runner_up_level() const {
+  if (rule != Rule::pvalue) return 0.0;
+  return runner_up_alpha == kRunnerUpDefault ? alpha : runner_up_alpha;
+}
+
+void AcceptParams::resolve_runner_up(bool dense_check_runs) {
+  if (runner_up_alpha != kRunnerUpDefault) return;
+  runner_up_alpha = rule == Rule::pvalue && !dense_check_runs ? alpha : 0.0;
+}
+
 AcceptParams::Rule parse_accept_rule(const std::string& name) {
   if (name == "pvalue") return AcceptParams::Rule::pvalue;
   if (name == "count") return AcceptParams::Rule::count;
@@ -63,7 +76,10 @@ void AcceptParams::validate() const {
   for (const Row& r : accept_param_rows()) {
     if (r.kind == K::text) continue;
     const double v = r.get(*this);
-    if (v >= r.min && v <= r.max && (r.kind != K::integer || v == std::floor(v))) continue;
+    const bool in_range = v >= r.min && v <= r.max && (r.kind != K::integer || v == std::floor(v));
+    // runner_up_alpha: [0, 1) or exactly the default's -1.
+    const bool sentinel_gap = r.key == "runner_up_alpha" && v < 0.0 && v != AcceptParams::kRunnerUpDefault;
+    if (in_range && !sentinel_gap) continue;
     std::ostringstream msg;
     msg << "accept parameter " << r.key << " = " << v << " is invalid; expected " << r.expected;
     throw std::invalid_argument(msg.str());

@@ -22,11 +22,21 @@ struct AcceptParams {
   /// pvalue rule, sets with a pose prior: accept only a motion inside the prior's chi-square gate
   /// at this confidence (prior_gate.hpp), in [0, 1); 0 = no gate.
   double prior_gate = 0.999;
-  /// pvalue rule: reject an accepted pair whose runner-up motion (the same solver on what the
-  /// accepted motion leaves unexplained, runner_up.hpp) has p < this under the pair's null and
-  /// comparable to the pair's own: a rigid alias; 0 = no runner-up test (the default: on real
-  /// structured scenes true closures have such runner-ups too, BENCHMARK.md section 36).
-  double runner_up_alpha = 0.0;
+  /// pvalue rule: reject an accepted pair whose comparable rival motions (the same solver on what
+  /// the accepted motion leaves unexplained, runner_up.hpp), each with p < this under the pair's
+  /// null, hold together as many inliers as it: a rigid alias; 0 = no runner-up test.
+  /// kRunnerUpDefault: `alpha` where no dense check runs, 0 where one does (resolve_runner_up()):
+  /// where the clouds are known the dense check decides, and in a small scene of repeated facades
+  /// true closures have rivals too (BENCHMARK.md section 38).
+  double runner_up_alpha = kRunnerUpDefault;
+  static constexpr double kRunnerUpDefault = -1.0;
+
+  /// The runner-up test's level in force: runner_up_alpha, or alpha at its default (sets without
+  /// clouds, which is what the solvers see) under the pvalue rule; 0 under count (no test).
+  double runner_up_level() const;
+  /// Fixes runner_up_alpha's default for a set whose decision does (dense_check_runs) or does not
+  /// get a dense check, so the report records the level in force; an explicit value stays.
+  void resolve_runner_up(bool dense_check_runs);
 
   /// Throws std::invalid_argument naming the field and the bad value.
   void validate() const;

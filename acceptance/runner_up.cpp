@@ -16,23 +16,43 @@ bool comparable(int runner, int best, const NullFit& null) {
   return runner - null.location >= kComparable * (best - null.location);
 }
 
+namespace {
+
+/// Median distance between where `a` and `b` put the source points of `inliers`, over `tol`.
 template <int Dim>
-std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Dim>& corr,
-                                  const Result<Dim>& accepted, const SolverParams& params,
-                                  const Calibration& calibration, const AcceptParams& accept,
-                                  const Deadline& budget) {
-  const double tol = explained_tolerance(params);
-  const Rigid<Dim>& T = accepted.T_target_source;
-  // The rest: what the accepted motion does not explain (its inliers and their near copies).
-  std::vector<char> taken(static_cast<std::size_t>(corr.size()), 0);
-  for (int i : accepted.inliers) taken[static_cast<std::size_t>(i)] = 1;
-  std::vector<Eigen::Index> rest;
-  for (Eigen::Index i = 0; i < corr.size(); ++i) {
-    if (taken[static_cast<std::size_t>(i)]) continue;
-    if ((T * corr.source.col(i) - corr.target.col(i)).norm() <= kExplained * tol) continue;
-    rest.push_back(i);
+double median_separation(const Correspondences<Dim>& corr, const std::vector<int>& inliers,
+                         const Rigid<Dim>& a, const Rigid<Dim>& b, double tol) {
+  if (inliers.empty()) return 0.0;
+  std::vector<double> moved;
+  moved.reserve(inliers.size());
+  for (int i : inliers) {
+    const auto m = corr.source.col(i);
+    moved.push_back((a * m - b * m).norm());
   }
-  if (rest.size() < 2) return std::nullopt;
+  auto mid = moved.begin() + static_cast<std::ptrdiff_t>(moved.size() / 2);
+  std::nth_element(moved.begin(), mid, moved.end());
+  return *mid / tol;
+}
+
+/// Drops from `rest` (indices into corr) the correspondences `T` explains within kExplained
+/// tolerances, and `taken` ones (indices into the subset `rest` was solved as).
+template <int Dim>
+void drop_explained(const Correspondences<Dim>& corr, const Rigid<Dim>& T, double tol,
+                    const std::vector<int>& taken, std::vector<Eigen::Index>& rest) {
+  std::vector<char> out(rest.size(), 0);
+  for (int k : taken) out[static_cast<std::size_t>(k)] = 1;
+  std::vector<Eigen::Index> kept;
+  kept.reserve(rest.size());
+  for (std::size_t k = 0; k < rest.size(); ++k) {
+    const Eigen::Index i = rest[k];
+    if (out[k] || (T * corr.source.col(i) - corr.target.col(i)).norm() <= kExplained * tol) continue;
+    kept.push_back(i);
+  }
+  rest.swap(kept);
+}
+
+template <int Dim>
+Correspondences<Dim> subset(const Correspondences<Dim>& corr, const std::vector<Eigen::Index>& rest) {
   Correspondences<Dim> sub;
   sub.source.resize(Dim, static_cast<Eigen::Index>(rest.size()));
   sub.target.resize(Dim, static_cast<Eigen::Index>(rest.size()));
@@ -42,48 +62,71 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     if (!corr.score.empty()) sub.score.push_back(corr.score[static_cast<std::size_t>(rest[k])]);
   }
   sub.prior = corr.prior;
+  return sub;
+}
 
-  SolverParams p = params;
-  p.time_limit_s = std::min(params.time_limit_s, budget.limit_s());
-  p.seed = derive_seed(params.seed, {kRunnerUpStream});
-  const Result<Dim> r = solver.solve(sub, p);
-  RunnerUp out;
-  if (r.status == Status::error) return std::nullopt;
-  out.score = static_cast<int>(r.inliers.size());
-  out.time_limit = r.status == Status::time_limit;
-  // The runner-up's p: the calibrated rule's own, as if the runner-up were the pair's score, at
-  // runner_up_alpha (calibrate(): the same permuted sets, the screen's bounds first, then solved
-  // draws that stop early, a cautious fit before an early accept, more draws where the range of p
-  // holds the level). So it is significant exactly when the rule would accept that score, whether
-  // the pair's own null was of a few draws or of the screen's bounds (too loose for a smaller
-  // score).
-  AcceptParams at = accept;
-  at.alpha = accept.runner_up_alpha;
-  const Calibration own = calibrate(solver, corr, params, at, out.score, budget);
-  out.p_value = own.p_value;
-  out.time_limit = out.time_limit || own.budget_exhausted;
-  // The chance level the excesses are measured from: solved draws where either null has them.
-  const NullFit& null = !own.screened || calibration.screened ? own.null : calibration.null;
-  std::vector<double> moved;
-  moved.reserve(accepted.inliers.size());
-  for (int i : accepted.inliers) {
-    const auto m = corr.source.col(i);
-    moved.push_back((T * m - r.T_target_source * m).norm());
+}  // namespace
+
+template <int Dim>
+std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Dim>& corr,
+                                  const Result<Dim>& accepted, const SolverParams& params,
+                                  const Calibration& calibration, const AcceptParams& accept,
+                                  const Deadline& budget) {
+  const double tol = explained_tolerance(params);
+  const Rigid<Dim>& T = accepted.T_target_source;
+  const int best = static_cast<int>(accepted.inliers.size());
+  // The rest: what the accepted motion does not explain (its inliers and their near copies).
+  std::vector<Eigen::Index> rest(static_cast<std::size_t>(corr.size()));
+  for (Eigen::Index i = 0; i < corr.size(); ++i) rest[static_cast<std::size_t>(i)] = i;
+  {
+    std::vector<int> own(accepted.inliers.begin(), accepted.inliers.end());
+    drop_explained(corr, T, tol, own, rest);
   }
-  if (!moved.empty()) {
-    auto mid = moved.begin() + static_cast<std::ptrdiff_t>(moved.size() / 2);
-    std::nth_element(moved.begin(), mid, moved.end());
-    out.separation = *mid / tol;
-  }
-  bool competes = out.p_value < accept.runner_up_alpha &&
-                  comparable(out.score, static_cast<int>(accepted.inliers.size()), null) &&
-                  out.separation > kSameMotion && pins_motion(sub, r.inliers);
-  if (competes && accept.prior_gate > 0.0) {
-    if (const auto d2 = prior_distance2(corr, r.T_target_source)) {
-      competes = inside_prior_gate<Dim>(*d2, accept.prior_gate);
+  std::optional<RunnerUp> out;
+  for (int round = 0; round < kMaxRivals && rest.size() >= 2; ++round) {
+    const Correspondences<Dim> sub = subset(corr, rest);
+    SolverParams p = params;
+    p.time_limit_s = std::min(params.time_limit_s, budget.limit_s());
+    p.seed = round == 0 ? derive_seed(params.seed, {kRunnerUpStream})
+                        : derive_seed(params.seed, {kRunnerUpStream, static_cast<std::uint64_t>(round)});
+    const Result<Dim> r = solver.solve(sub, p);
+    if (r.status == Status::error) break;
+    const int score = static_cast<int>(r.inliers.size());
+    // Its p: the calibrated rule's own, as if this motion were the pair's score, at
+    // runner_up_alpha (calibrate(): the same permuted sets, the screen's bounds first, then solved
+    // draws that stop early, more draws where the range of p holds the level). So it is
+    // significant exactly when the rule would accept that score.
+    AcceptParams at = accept;
+    at.alpha = accept.runner_up_level();
+    const Calibration own = calibrate(solver, corr, params, at, score, budget);
+    // The chance level the excesses are measured from: solved draws where either null has them.
+    const NullFit& null = !own.screened || calibration.screened ? own.null : calibration.null;
+    const double separation = median_separation(corr, accepted.inliers, T, r.T_target_source, tol);
+    const bool limited = r.status == Status::time_limit || own.budget_exhausted;
+    if (!out) {
+      out.emplace();
+      out->score = score;
+      out->p_value = own.p_value;
+      out->separation = separation;
     }
+    out->time_limit = out->time_limit || limited;
+    bool competes = own.p_value < accept.runner_up_level() && comparable(score, best, null) &&
+                    separation > kSameMotion && pins_motion(sub, r.inliers);
+    if (competes && accept.prior_gate > 0.0) {
+      if (const auto d2 = prior_distance2(corr, r.T_target_source)) {
+        competes = inside_prior_gate<Dim>(*d2, accept.prior_gate);
+      }
+    }
+    if (!competes) break;
+    ++out->rivals;
+    out->rival_support += score;
+    // The decision: the accepted motion must outweigh its comparable rivals together.
+    if (out->rival_support >= best) {
+      out->ambiguous = true;
+      break;
+    }
+    drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
   }
-  out.ambiguous = competes;
   return out;
 }
 

@@ -24,15 +24,17 @@ Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
           calibrate(solver, corr, params, accept,
                                 static_cast<int>(v.result.inliers.size()), budget);
       decide_calibrated(v.result, corr, *v.calibration, accept);
-      if (v.result.accepted && accept.runner_up_alpha > 0.0) {
+      if (v.result.accepted && accept.runner_up_level() > 0.0) {
         v.runner_up = runner_up(solver, corr, v.result, params, *v.calibration, accept, budget);
         if (v.runner_up && v.runner_up->ambiguous) {
           v.result.accepted = false;
           if (v.result.status == Status::ok) v.result.status = Status::rejected;
           std::ostringstream msg;
-          msg << "runner-up test: a second motion of " << v.runner_up->score << " inliers (p "
-              << v.runner_up->p_value << ") " << v.runner_up->separation
-              << " tolerances away: a rigid alias";
+          const RunnerUp& u = *v.runner_up;
+          msg << "runner-up test: " << u.rivals << (u.rivals == 1 ? " rival motion holds " : " rival motions hold ")
+              << u.rival_support << " inliers against the accepted " << v.result.inliers.size()
+              << " (the first: " << u.score << " inliers, p " << u.p_value << ", "
+              << u.separation << " tolerances away): a rigid alias";
           v.result.message = msg.str();
         }
       }

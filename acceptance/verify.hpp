@@ -21,7 +21,7 @@ struct Verification {
   Result<Dim> result;                      ///< decision applied: accepted, status
   std::optional<Calibration> calibration;  ///< pvalue rule, when the solve did not fail
   std::optional<double> prior_d2;          ///< d^2 of the motion against the set's prior
-  /// pvalue rule with runner_up_alpha > 0, a pair the rest of the rule accepted: its runner-up
+  /// pvalue rule with runner_up_level() > 0, a pair the rest of the rule accepted: its runner-up
   std::optional<RunnerUp> runner_up;
   double solve_ms = 0.0;                   ///< the solver's own call, wall time
   AcceptParams::Rule rule = AcceptParams::Rule::pvalue;  ///< the rule that decided

@@ -270,6 +270,9 @@ void loop_config(const Options& o, const LoopLine& l, LoopConfig& c, cli::Solver
   if (c.dense.min_overlap == DenseCheckParams::kRuleDefault) {
     c.dense.min_overlap = c.dense.min_overlap_for(c.accept.rule);
   }
+  // The maps are known: where their dense check runs it decides, and the runner-up test is off
+  // unless asked (BENCHMARK.md section 38: with both, balm's true closures have rivals too).
+  c.accept.resolve_runner_up(c.dense.min_overlap > 0.0);
   try {
     c.validate();
   } catch (const std::invalid_argument& e) {

@@ -54,7 +54,7 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
 #endif
   const auto& names = opts.solvers;
   const SolverParams& params = opts.params;
-  const AcceptParams& accept = opts.accept;
+  AcceptParams accept = opts.accept;
   const SuccessCriteria& crit = opts.criteria;
   const long long units = static_cast<long long>(names.size()) * trials;  // (solver, trial)
   const std::string out = cli::report_path(o, opts.out);
@@ -62,6 +62,16 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   const auto prior = cli::prior_sigmas(prior_options);
   const double prior_rot = prior.first, prior_trans = prior.second;
   Dump dump = read_dump(dir);
+  bool dense_runs = false;  // a dense check decides the accepted pairs (clouds, a build with it)
+#ifdef VERIFYBENCH_HAVE_DENSE_CHECK
+  // The report holds the threshold in force, not "the rule's default".
+  if (dense.min_overlap == DenseCheckParams::kRuleDefault) {
+    dense.min_overlap = dense.min_overlap_for(accept.rule);
+  }
+  dense_runs = dump.clouds && dense.min_overlap_for(accept.rule) > 0.0;
+#endif
+  // Where the clouds decide, the runner-up test is off unless asked (BENCHMARK.md section 38).
+  accept.resolve_runner_up(dense_runs);
   std::optional<bool> expected;
   if (expected_text != "auto") {
     expected = expected_text == "positive";
@@ -93,10 +103,6 @@ int cmd_run(const std::vector<std::string>& args, const std::vector<std::string>
   // The dense check where the dump kept its clouds (the same check as the loop's on its maps).
   nlohmann::json dense_json = nullptr;
 #ifdef VERIFYBENCH_HAVE_DENSE_CHECK
-  // The report holds the threshold in force, not "the rule's default".
-  if (dense.min_overlap == DenseCheckParams::kRuleDefault) {
-    dense.min_overlap = dense.min_overlap_for(accept.rule);
-  }
   if (dump.clouds) {
     dense_check_rows(rows, *dump.clouds, dense, accept.rule, crit);
     dense_json = cli::rows_json(dense_check_param_rows(), dense);

@@ -63,6 +63,8 @@ TrialRecord trial_record(const Verification<Dim>& v, const std::string& solver_n
     r.runner_up_p = u->p_value;
     r.runner_up_separation = u->separation;
     r.runner_up_ambiguous = u->ambiguous;
+    r.runner_up_rivals = u->rivals;
+    r.runner_up_support = u->rival_support;
     // A runner-up the budget cut short may have been a larger one: more time could reject.
     r.provisional = r.provisional || (u->time_limit && !u->ambiguous);
   }

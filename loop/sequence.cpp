@@ -360,6 +360,9 @@ void verify_candidates(const LoopConfig& config, const MapsAndFeatures& mf, cons
   StopWatch clock;
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const auto& name : config.solvers) solvers.push_back(SolverRegistry::create(name));
+  // The maps are known: where their dense check runs, the runner-up test is off unless asked.
+  AcceptParams accept = config.accept;
+  accept.resolve_runner_up(config.dense.min_overlap_for(accept.rule) > 0.0);
   const long long total_solves =
       static_cast<long long>(run.candidates.size()) * static_cast<long long>(solvers.size());
   long long solves = 0;
@@ -384,7 +387,7 @@ void verify_candidates(const LoopConfig& config, const MapsAndFeatures& mf, cons
       row.overlap = overlap;
       row.true_closure = is_true;
       row.T_truth = T_truth;
-      solve_pair(*solvers[s], config.solvers[s], dump, is_true, sp, config.accept, row);
+      solve_pair(*solvers[s], config.solvers[s], dump, is_true, sp, accept, row);
       row.record.dataset = "maps " + std::to_string(c.query) + " -> " + std::to_string(c.match);
       judge_row(config, q, m, is_true, row);
       run.rows.push_back(std::move(row));

@@ -19,7 +19,9 @@ calibration). A pair counts as registered by its motion alone, accepted or not.
 --rows prints one line per (dump, solver): expected, inliers, the null's mean and threshold,
 p-value, its range, d^2 of the fitted motion under the set's pose prior (`prior_d2`; "-" without
 one; the calibrated rule rejects beyond the prior gate), the runner-up test's score and p where
-it ran (`--runner-up-alpha`; "(alias)" where it rejected the pair) and both decisions. The curve
+it ran (by default on sets without clouds; `--runner-up-alpha`), with its rivals' count and
+inliers together where it found any ("(alias)" where they outweigh the accepted motion and the
+pair was rejected) and both decisions. The curve
 over alpha keeps a pair the runner-up test rejected rejected at every alpha; the test ran only on
 pairs accepted at the reports' alpha, so points at a larger alpha include pairs it never saw. `uncertain` counts the calibrated decisions whose p range
 (the p that the null's draws cannot tell apart) holds alpha: other draws may reverse them. --plot draws ROC and precision-recall curves per solver: the
@@ -74,12 +76,15 @@ def load_rows(paths):
 
 
 def runner_up_text(row):
-    """The runner-up test's row cell: its score and p, "(alias)" where it rejected the pair; "-"
+    """The runner-up test's row cell: its score and p, then "rivals K: S" where K motions holding S
+    inliers together competed with the accepted one, "(alias)" where they rejected the pair; "-"
     where it did not run."""
     if row.get("runner_up") is None:
         return "-"
+    rivals = row.get("runner_up_rivals") or 0
+    family = f", rivals {rivals}: {row.get('runner_up_support')}" if rivals else ""
     alias = " (alias)" if row.get("runner_up_ambiguous") else ""
-    return f"{row['runner_up']} ({report_io.fmt(row.get('runner_up_p'), '.2g')}){alias}"
+    return f"{row['runner_up']} ({report_io.fmt(row.get('runner_up_p'), '.2g')}){family}{alias}"
 
 
 def dense_text(row):

@@ -69,6 +69,9 @@ struct TrialRecord {
   std::optional<int> runner_up;
   double runner_up_p = kNaN, runner_up_separation = kNaN;
   bool runner_up_ambiguous = false;  ///< the runner-up test rejected the pair (RunnerUp::ambiguous)
+  /// The motions that competed with the accepted one and their inliers together (RunnerUp::rivals,
+  /// rival_support); unset without a runner-up test.
+  std::optional<int> runner_up_rivals, runner_up_support;
   /// The dense check (acceptance/dense_check.hpp) of a pair the rule accepted, where the set's
   /// clouds are known: the clouds' overlap after ICP (NaN: it did not run), the ICP's
   /// convergence, fitness [m^2], refined motion (row-major) and the check's wall time.

@@ -194,6 +194,8 @@ json to_json(const TrialRecord& r) {
             {"runner_up_p", number_or_null(r.runner_up_p)},
             {"runner_up_separation", number_or_null(r.runner_up_separation)},
             {"runner_up_ambiguous", r.runner_up_ambiguous},
+            {"runner_up_rivals", r.runner_up_rivals ? json(*r.runner_up_rivals) : json(nullptr)},
+            {"runner_up_support", r.runner_up_support ? json(*r.runner_up_support) : json(nullptr)},
             {"dense_check", std::isnan(r.dense_overlap)
                                 ? json(nullptr)
                                 : json{{"overlap", r.dense_overlap},

@@ -143,6 +143,8 @@ TrialRecord trial_from_json(const json& j) {
   r.runner_up_p = real_or_nan(j, "runner_up_p");
   r.runner_up_separation = real_or_nan(j, "runner_up_separation");
   r.runner_up_ambiguous = optional<bool>(j, "runner_up_ambiguous").value_or(false);
+  r.runner_up_rivals = optional<int>(j, "runner_up_rivals");  // absent before it existed
+  r.runner_up_support = optional<int>(j, "runner_up_support");
   if (j.contains("dense_check") && !j.at("dense_check").is_null()) {  // absent before it existed
     const json& d = j.at("dense_check");
     if (!d.is_object()) bad("field 'dense_check': not an object: " + d.dump());

@@ -160,7 +160,7 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
                    const std::optional<Array>& prior_cov, const Settings& settings,
                    const Clouds& clouds) {
   const vb::SolverParams& params = settings.solver;
-  const vb::AcceptParams& accept = settings.accept;
+  vb::AcceptParams accept = settings.accept;
   if (clouds.source.has_value() != clouds.target.has_value()) {
     throw std::invalid_argument("source_cloud and target_cloud come together");
   }
@@ -170,6 +170,8 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
     source_cloud = cloud_of(*clouds.source, "source_cloud");
     target_cloud = cloud_of(*clouds.target, "target_cloud");
   }
+  // With clouds the dense check decides and the runner-up test is off unless asked (as in `run`).
+  accept.resolve_runner_up(!source_cloud.empty() && settings.dense.min_overlap_for(accept.rule) > 0.0);
 #else
   if (clouds.source) {
     throw std::invalid_argument("source_cloud: this build has no dense check (no front end)");
@@ -251,13 +253,15 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["calibration_ms"] = calibration ? calibration->ms : 0.0;
   out["prior_d2"] = v.prior_d2 ? py::object(py::float_(*v.prior_d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
-  const auto& u = v.runner_up;  // runner_up_alpha > 0 and a pair the rest of the rule accepted
+  const auto& u = v.runner_up;  // the test ran: a pair the rest of the rule accepted
   out["provisional"] = (calibration && calibration->budget_exhausted) ||
                        (u && u->time_limit && !u->ambiguous);
   out["runner_up"] = u ? py::object(py::int_(u->score)) : py::object(py::none());
   out["runner_up_p"] = u ? py::object(py::float_(u->p_value)) : py::object(py::none());
   out["runner_up_separation"] = u ? py::object(py::float_(u->separation)) : py::object(py::none());
   out["runner_up_ambiguous"] = u ? u->ambiguous : false;
+  out["runner_up_rivals"] = u ? py::object(py::int_(u->rivals)) : py::object(py::none());
+  out["runner_up_support"] = u ? py::object(py::int_(u->rival_support)) : py::object(py::none());
   out["dense_check"] = dense;
   return out;
 }
@@ -539,8 +543,9 @@ PYBIND11_MODULE(_core, m) {
         "them with their defaults, which are the CLI's: accept='pvalue').\n"
         "Returns a dict: inliers (ascending indices), T ((dim+1) x (dim+1), dst <- src), accepted,\n"
         "status, time_ms (the C++ call), graph_ms, search_ms, fit_ms, omega_upper_bound, p_value,\n"
-        "provisional, runner_up, runner_up_p, runner_up_separation (None unless runner_up_alpha > 0\n"
-        "ran the test), runner_up_ambiguous. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1)\n"
+        "provisional, runner_up, runner_up_p, runner_up_separation, runner_up_rivals,\n"
+        "runner_up_support (None where the runner-up test did not run: it runs on a pair the rule\n"
+        "accepted, by default at alpha without clouds and not with them), runner_up_ambiguous. prior_T, prior_cov: a pose prior (odometry's (dim+1) x (dim+1)\n"
         "guess and the 3 x 3 / 6 x 6 covariance of its left perturbation), both or neither; under\n"
         "'pvalue' a motion outside its chi-square gate at prior_gate is not accepted.\n"
         "source_cloud, target_cloud: the two scans ((k, 3) arrays, each in its own frame; read_dump()\n"

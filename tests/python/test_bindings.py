@@ -136,14 +136,18 @@ def test_pose_prior_gates_the_calibrated_rule():
 
 def test_runner_up_test_rejects_a_corridors_shifted_copies():
     # A repetitive negative: four shifted copies of the corridor and no true motion. The null
-    # accepts one copy; with runner_up_alpha another copy as large is found and the pair rejected.
+    # accepts one copy; the runner-up test (on by default without clouds, runner_up_alpha=0 turns
+    # it off) finds the other copies, which together outweigh it, and rejects the pair.
     s = vb.synthetic(n=300, dim=3, seed=11, kind="repetitive", negative=True)
-    plain = vb.solve("clique", s["src"], s["dst"], eps=0.1)
+    plain = vb.solve("clique", s["src"], s["dst"], eps=0.1, runner_up_alpha=0)
     assert plain["accepted"] and plain["runner_up"] is None and not plain["runner_up_ambiguous"]
-    r = vb.solve("clique", s["src"], s["dst"], eps=0.1, runner_up_alpha=0.001)
+    assert plain["runner_up_rivals"] is None and plain["runner_up_support"] is None
+    r = vb.solve("clique", s["src"], s["dst"], eps=0.1)
     assert not r["accepted"] and r["runner_up_ambiguous"]
     assert r["runner_up"] >= 0.6 * len(r["inliers"]) and r["runner_up_p"] < 0.001
     assert r["runner_up_separation"] > 10.0
+    assert r["runner_up_rivals"] >= 1 and r["runner_up_support"] >= len(r["inliers"])
+    assert len(r["inliers"]) + r["runner_up_support"] <= 300
 
 
 def test_dense_check_refines_with_the_clouds_and_refutes_an_alias():
@@ -163,6 +167,8 @@ def test_dense_check_refines_with_the_clouds_and_refutes_an_alias():
     assert plain["accepted"] and plain["dense_check"] is None
     kept = vb.solve("clique", src, dst, eps=0.2, source_cloud=cloud, target_cloud=cloud + shift)
     assert kept["accepted"] and kept["dense_check"]["overlap"] > 0.9
+    # With clouds the dense check decides: the runner-up test is off unless asked.
+    assert plain["runner_up"] is not None and kept["runner_up"] is None
     assert np.allclose(kept["dense_check"]["T_refined"][:3, 3], shift, atol=0.05)
     apart = vb.solve("clique", src, dst, eps=0.2, source_cloud=cloud,
                      target_cloud=cloud + [50.0, 0.0, 0.0])
