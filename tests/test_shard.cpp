@@ -146,9 +146,13 @@ TEST(Shard, RowsSurviveTheJsonRoundTrip) {
   r.runner_up_p = 2.5e-7;
   r.runner_up_separation = 41.5;
   r.runner_up_ambiguous = true;
+  r.runner_up_rivals = 2;
+  r.runner_up_support = 19;
   r.T_target_source = {1, 0, 0.5, 0, 1, -0.25, 0, 0, 1};
   const json j = vb::to_json(r);
   EXPECT_EQ(vb::to_json(vb::trial_from_json(json::parse(j.dump()))), j);
+  EXPECT_EQ(j["runner_up_rivals"], 2);
+  EXPECT_EQ(j["runner_up_support"], 19);
   EXPECT_TRUE(j["dense_check"].is_null());
   {  // The dense check's figures, an unconverged ICP's fitness (null) included.
     vb::TrialRecord d = r;
