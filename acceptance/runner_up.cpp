@@ -5,6 +5,7 @@
 
 #include "acceptance/prior_gate.hpp"
 #include "core/random.hpp"
+#include "core/timer.hpp"
 
 namespace verifybench {
 
@@ -72,6 +73,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
                                   const Result<Dim>& accepted, const SolverParams& params,
                                   const Calibration& calibration, const AcceptParams& accept,
                                   const Deadline& budget) {
+  const StopWatch clock;
   const double tol = explained_tolerance(params);
   const Rigid<Dim>& T = accepted.T_target_source;
   const int best = static_cast<int>(accepted.inliers.size());
@@ -127,6 +129,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     }
     drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
   }
+  if (out) out->ms = clock.ms();
   return out;
 }
 

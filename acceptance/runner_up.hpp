@@ -38,6 +38,7 @@ struct RunnerUp {
   int rivals = 0;         ///< motions found that compete with the accepted one (see above)
   int rival_support = 0;  ///< their inliers together
   bool time_limit = false;  ///< a runner-up's solve was stopped (its score a lower bound)
+  double ms = 0.0;          ///< wall time of the runner-up solves and their calibrations
   bool ambiguous = false;   ///< the decision: rival_support >= the accepted motion's inliers
 };
 

@@ -250,7 +250,8 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
                   : py::object(py::none());
   out["null_threshold"] =
       calibration ? py::object(py::int_(calibration->threshold)) : py::object(py::none());
-  out["calibration_ms"] = calibration ? calibration->ms : 0.0;
+  out["calibration_ms"] =
+      (calibration ? calibration->ms : 0.0) + (v.runner_up ? v.runner_up->ms : 0.0);
   out["prior_d2"] = v.prior_d2 ? py::object(py::float_(*v.prior_d2)) : py::object(py::none());
   out["null_screened"] = calibration ? calibration->screened : false;
   const auto& u = v.runner_up;  // the test ran: a pair the rest of the rule accepted
