@@ -47,7 +47,7 @@ const char* to_string(AcceptParams::Rule rule);
 AcceptParams::Rule parse_accept_rule(const std::string& name);
 
 /// The accept rule's settings as rows (core/param_rows.hpp): --accept, --alpha, --null-draws,
-/// --max-null-draws, --prior-gate.
+/// --max-null-draws, --prior-gate, --runner-up-alpha.
 const std::vector<ParamRow<AcceptParams>>& accept_param_rows();
 
 }  // namespace verifybench

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "acceptance/prior_gate.hpp"
 #include "core/random.hpp"
@@ -85,6 +86,9 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     drop_explained(corr, T, tol, own, rest);
   }
   std::optional<RunnerUp> out;
+  // The rivals found so far: their motions and inliers (indices into corr).
+  std::vector<Rigid<Dim>> rival_motions;
+  std::vector<std::vector<int>> rival_inliers;
   for (int round = 0; round < kMaxRivals && rest.size() >= 2; ++round) {
     const Correspondences<Dim> sub = subset(corr, rest);
     SolverParams p = params;
@@ -94,6 +98,36 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     const Result<Dim> r = solver.solve(sub, p);
     if (r.status == Status::error) break;
     const int score = static_cast<int>(r.inliers.size());
+    std::vector<int> found;  // r's inliers as indices into corr
+    found.reserve(r.inliers.size());
+    for (int k : r.inliers) found.push_back(static_cast<int>(rest[static_cast<std::size_t>(k)]));
+    const double separation = median_separation(corr, accepted.inliers, T, r.T_target_source, tol);
+    // The accepted motion again (its remnant split by noise or a k-NN matching's neighbouring
+    // targets), or an earlier rival again (its near copy): not a motion of its own, so it is not
+    // counted; its correspondences go and the search goes on behind it.
+    bool repeat = separation <= kSameMotion || !pins_motion(sub, r.inliers);
+    for (std::size_t j = 0; j < rival_motions.size() && !repeat; ++j) {
+      repeat = median_separation(corr, rival_inliers[j], rival_motions[j], r.T_target_source, tol) <=
+               kSameMotion;
+    }
+    const bool limited_solve = r.status == Status::time_limit;
+    // Below 0.4 of the accepted motion's score no null makes it comparable (comparable() needs
+    // score >= 0.4 best + 0.6 mu, mu >= 0), nor anything the solver finds after it: no calibration.
+    if (10LL * score < 4LL * best) {
+      if (!out) {
+        out.emplace();
+        out->score = score;
+        out->p_value = std::numeric_limits<double>::quiet_NaN();
+        out->separation = separation;
+      }
+      out->time_limit = out->time_limit || limited_solve;
+      break;
+    }
+    if (repeat && out) {
+      out->time_limit = out->time_limit || limited_solve;
+      drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
+      continue;
+    }
     // Its p: the calibrated rule's own, as if this motion were the pair's score, at
     // runner_up_alpha (calibrate(): the same permuted sets, the screen's bounds first, then solved
     // draws that stop early, more draws where the range of p holds the level). So it is
@@ -103,29 +137,36 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     const Calibration own = calibrate(solver, corr, params, at, score, budget);
     // The chance level the excesses are measured from: solved draws where either null has them.
     const NullFit& null = !own.screened || calibration.screened ? own.null : calibration.null;
-    const double separation = median_separation(corr, accepted.inliers, T, r.T_target_source, tol);
-    const bool limited = r.status == Status::time_limit || own.budget_exhausted;
-    if (!out) {
+    if (!out) {  // the first runner-up's figures, whatever it turns out to be
       out.emplace();
       out->score = score;
       out->p_value = own.p_value;
       out->separation = separation;
     }
-    out->time_limit = out->time_limit || limited;
-    bool competes = own.p_value < accept.runner_up_level() && comparable(score, best, null) &&
-                    separation > kSameMotion && pins_motion(sub, r.inliers);
-    if (competes && accept.prior_gate > 0.0) {
+    out->time_limit = out->time_limit || limited_solve || own.budget_exhausted;
+    if (repeat) {
+      drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
+      continue;
+    }
+    // The solver takes the largest motion left first, so once one is not significant or not
+    // comparable, none after it is.
+    if (!(own.p_value < accept.runner_up_level()) || !comparable(score, best, null)) break;
+    bool competes = true;
+    if (accept.prior_gate > 0.0) {
       if (const auto d2 = prior_distance2(corr, r.T_target_source)) {
         competes = inside_prior_gate<Dim>(*d2, accept.prior_gate);
       }
     }
-    if (!competes) break;
-    ++out->rivals;
-    out->rival_support += score;
-    // The decision: the accepted motion must outweigh its comparable rivals together.
-    if (out->rival_support >= best) {
-      out->ambiguous = true;
-      break;
+    if (competes) {
+      ++out->rivals;
+      out->rival_support += score;
+      // The decision: the accepted motion must outweigh its comparable rivals together.
+      if (out->rival_support >= best) {
+        out->ambiguous = true;
+        break;
+      }
+      rival_motions.push_back(r.T_target_source);
+      rival_inliers.push_back(std::move(found));
     }
     drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
   }

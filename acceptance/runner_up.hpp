@@ -11,7 +11,9 @@
 // to the accepted motion (comparable()), moves the accepted inliers elsewhere (a motion of its
 // own, not the same one split by noise) and, where the set carries a pose prior, lies inside the
 // prior's gate too (a prior that tells the two apart decides). While rivals are found, take their
-// correspondences away too and solve again. The pair is ambiguous when its rivals together hold
+// correspondences away too and solve again; a runner-up that is the accepted motion or an earlier
+// rival again (within kSameMotion tolerances: a remnant split by noise, a k-NN matching's near
+// copy) is taken away uncounted and the search goes on behind it. The pair is ambiguous when its rivals together hold
 // at least as many inliers as the accepted motion: one alias as large as the truth (a tie), or a
 // family of copies (a periodic scene's shifts by one, two, ... periods) that outweighs any one of
 // them. A true motion with one weaker alias is kept, whatever the ratio of the two. Each rival's p
@@ -30,7 +32,8 @@ namespace verifybench {
 struct RunnerUp {
   // The first runner-up (the largest motion the rest holds):
   int score = 0;          ///< its selection size
-  /// of `score` under the pair's null: calibrate() of `score` at runner_up_alpha
+  /// of `score` under the pair's null: calibrate() of `score` at runner_up_alpha; NaN where it
+  /// was not calibrated (a score under 0.4 of the accepted one's, which no null makes comparable)
   double p_value = 1.0;
   /// Median distance between where the accepted motion and the runner-up's put the accepted
   /// inliers' source points, over the tolerance: <= kSameMotion means one motion.
@@ -70,8 +73,8 @@ bool comparable(int runner, int best, const NullFit& null);
 /// is not always the largest); intel's true closures that have a significant alias give mostly
 /// 0.07-0.2 (BENCHMARK.md section 36).
 inline constexpr double kComparable = 0.4;
-/// Runner-up solves per pair at most (each with its calibration); a periodic scene's family is
-/// decided by its first two or three.
+/// Runner-up solves per pair at most, the first included (each with its calibration, but for the
+/// repeats after the first); a periodic scene's family is decided by its first two or three.
 inline constexpr int kMaxRivals = 6;
 
 inline constexpr std::uint64_t kRunnerUpStream = 0x72756e6eull;  // "runn"

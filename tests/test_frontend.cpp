@@ -680,6 +680,8 @@ TEST(KeptClouds, RunsDenseCheckRejectsARigidAliasAndKeepsTheTruth) {
   const auto t = run(truth, "", "truth");
   EXPECT_EQ(t["parameters"]["run"]["dense_check"]["min_overlap"].get<double>(),
             kDefaultScanOverlap);
+  // The clouds decide: the runner-up test is off unless asked (the report holds the level in force).
+  EXPECT_EQ(t["parameters"]["runner_up_alpha"].get<double>(), 0.0);
   for (const auto& row : t["results"]) {
     EXPECT_TRUE(row["accepted"].get<bool>()) << row.dump();
     ASSERT_TRUE(row["dense_check"].is_object()) << row.dump();
@@ -704,8 +706,13 @@ TEST(KeptClouds, RunsDenseCheckRejectsARigidAliasAndKeepsTheTruth) {
     EXPECT_TRUE(r["parameters"]["run"]["dense_check"].is_null() ||
                 r["parameters"]["run"]["dense_check"]["min_overlap"].get<double>() == 0.0)
         << tag;
+    // No dense check: the runner-up test runs at alpha under the calibrated rule (one alias among
+    // uniform outliers has no rival, so it stands), not at all under count.
+    const double level = tag == std::string("count") ? 0.0 : 0.001;
+    EXPECT_EQ(r["parameters"]["runner_up_alpha"].get<double>(), level) << tag;
     for (const auto& row : r["results"]) {
       EXPECT_TRUE(row["accepted"].get<bool>()) << tag << " " << row.dump();
+      EXPECT_EQ(row["runner_up"].is_null(), level == 0.0) << tag << " " << row.dump();
       EXPECT_TRUE(row["dense_check"].is_null()) << tag;
       EXPECT_EQ(row["decision"], "FP") << tag;
     }

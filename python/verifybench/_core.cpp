@@ -258,7 +258,8 @@ py::dict solve_dim(const std::string& name, const Array& src, const Array& dst,
   out["provisional"] = (calibration && calibration->budget_exhausted) ||
                        (u && u->time_limit && !u->ambiguous);
   out["runner_up"] = u ? py::object(py::int_(u->score)) : py::object(py::none());
-  out["runner_up_p"] = u ? py::object(py::float_(u->p_value)) : py::object(py::none());
+  out["runner_up_p"] =  // None also where it was not calibrated (runner_up.hpp)
+      u && !std::isnan(u->p_value) ? py::object(py::float_(u->p_value)) : py::object(py::none());
   out["runner_up_separation"] = u ? py::object(py::float_(u->separation)) : py::object(py::none());
   out["runner_up_ambiguous"] = u ? u->ambiguous : false;
   out["runner_up_rivals"] = u ? py::object(py::int_(u->rivals)) : py::object(py::none());
