@@ -111,20 +111,23 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
                kSameMotion;
     }
     const bool limited_solve = r.status == Status::time_limit;
-    // Below 0.4 of the accepted motion's score no null makes it comparable (comparable() needs
-    // score >= 0.4 best + 0.6 mu, mu >= 0), nor anything the solver finds after it: no calibration.
-    if (10LL * score < 4LL * best) {
+    auto note = [&](double p_value, bool limited) {  // the first runner-up's figures, whatever it is
       if (!out) {
         out.emplace();
         out->score = score;
-        out->p_value = std::numeric_limits<double>::quiet_NaN();
+        out->p_value = p_value;
         out->separation = separation;
       }
-      out->time_limit = out->time_limit || limited_solve;
+      out->time_limit = out->time_limit || limited;
+    };
+    // Below 0.4 of the accepted motion's score no null makes it comparable (comparable() needs
+    // score >= 0.4 best + 0.6 mu, mu >= 0), nor anything the solver finds after it: no calibration.
+    if (10LL * score < 4LL * best) {
+      note(std::numeric_limits<double>::quiet_NaN(), limited_solve);
       break;
     }
     if (repeat && out) {
-      out->time_limit = out->time_limit || limited_solve;
+      note(out->p_value, limited_solve);
       drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
       continue;
     }
@@ -137,13 +140,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     const Calibration own = calibrate(solver, corr, params, at, score, budget);
     // The chance level the excesses are measured from: solved draws where either null has them.
     const NullFit& null = !own.screened || calibration.screened ? own.null : calibration.null;
-    if (!out) {  // the first runner-up's figures, whatever it turns out to be
-      out.emplace();
-      out->score = score;
-      out->p_value = own.p_value;
-      out->separation = separation;
-    }
-    out->time_limit = out->time_limit || limited_solve || own.budget_exhausted;
+    note(own.p_value, limited_solve || own.budget_exhausted);
     if (repeat) {
       drop_explained(corr, r.T_target_source, tol, r.inliers, rest);
       continue;
