@@ -34,8 +34,8 @@ std::vector<Row> make_rows() {
                 "chi-square gate at confidence C (0 = no gate)",
                 0.0, 0.999999999, "a value in [0, 1) (0 = no gate)"),
       field_row(&P::runner_up_alpha, "runner-up-alpha", "runner_up_alpha", "A",
-                "pvalue rule: reject a pair whose rival motions (the same solver again on the "
-                "correspondences the accepted motion and the earlier rivals leave unexplained; "
+                "pvalue rule: reject a pair whose rival motions (the same solver again, or clique "
+                "for gnc-tls and robin-gnc, on the correspondences the accepted motion and the earlier rivals leave unexplained; "
                 "each with p < A under the pair's null and an excess over the null's location "
                 "at least 0.4 of the pair's) hold together as many inliers as the accepted one: "
                 "a rigid alias (0 = no runner-up test; -1 = the rule's default: --alpha where no "

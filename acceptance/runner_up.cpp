@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "acceptance/prior_gate.hpp"
 #include "core/random.hpp"
 #include "core/timer.hpp"
+#include "solvers/registry.hpp"
 
 namespace verifybench {
 
@@ -75,6 +77,15 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
                                   const Calibration& calibration, const AcceptParams& accept,
                                   const Deadline& budget) {
   const StopWatch clock;
+  // The search the runner-ups are found and calibrated with: the solver's own, or `clique` for a
+  // solver without one (GNC from one start converges to a blend of equal copies, or to nothing,
+  // and so never finds a periodic scene's family: BENCHMARK.md 40).
+  std::unique_ptr<Solver> clique;
+  if (!solver.searches()) {
+    register_solvers();
+    clique = SolverRegistry::create("clique");
+  }
+  const Solver& search = clique ? *clique : solver;
   const double tol = explained_tolerance(params);
   const Rigid<Dim>& T = accepted.T_target_source;
   const int best = static_cast<int>(accepted.inliers.size());
@@ -95,7 +106,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     p.time_limit_s = std::min(params.time_limit_s, budget.limit_s());
     p.seed = round == 0 ? derive_seed(params.seed, {kRunnerUpStream})
                         : derive_seed(params.seed, {kRunnerUpStream, static_cast<std::uint64_t>(round)});
-    const Result<Dim> r = solver.solve(sub, p);
+    const Result<Dim> r = search.solve(sub, p);
     if (r.status == Status::error) break;
     const int score = static_cast<int>(r.inliers.size());
     std::vector<int> found;  // r's inliers as indices into corr
@@ -137,9 +148,11 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     // significant exactly when the rule would accept that score.
     AcceptParams at = accept;
     at.alpha = accept.runner_up_level();
-    const Calibration own = calibrate(solver, corr, params, at, score, budget);
-    // The chance level the excesses are measured from: solved draws where either null has them.
-    const NullFit& null = !own.screened || calibration.screened ? own.null : calibration.null;
+    const Calibration own = calibrate(search, corr, params, at, score, budget);
+    // The chance level the excesses are measured from: solved draws where either null has them
+    // (the search's own where it is not the solver's).
+    const NullFit& null =
+        !own.screened || calibration.screened || clique ? own.null : calibration.null;
     note(own.p_value, limited_solve || own.budget_exhausted);
     if (repeat) {
       drop_explained(corr, r.T_target_source, tol, r.inliers, rest);

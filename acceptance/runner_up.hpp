@@ -6,19 +6,20 @@
 // beyond chance. A true motion leaves, once its own correspondences are taken away, only what
 // chance gives, or a few weaker aliases (a symmetric room, a facade repeated once). So: remove
 // every correspondence the accepted motion explains (residual ||T m_i - q_i|| within kExplained
-// tolerances), solve the rest with the same solver, and count that runner-up as a rival when it
-// is itself significant (p < runner_up_alpha under the pair's null, calibration.hpp), comparable
-// to the accepted motion (comparable()), moves the accepted inliers elsewhere (a motion of its
-// own, not the same one split by noise) and, where the set carries a pose prior, lies inside the
-// prior's gate too (a prior that tells the two apart decides). While rivals are found, take their
-// correspondences away too and solve again; a runner-up that is the accepted motion or an earlier
-// rival again (within kSameMotion tolerances: a remnant split by noise, a k-NN matching's near
-// copy) is taken away uncounted and the search goes on behind it. The pair is ambiguous when its rivals together hold
+// tolerances), solve the rest with the same solver (with `clique` where the solver has no search of
+// its own: Solver::searches()), and count that runner-up as a rival when it is itself significant
+// (p < runner_up_alpha under the pair's null, calibration.hpp), comparable to the accepted motion
+// (comparable()), moves the accepted inliers elsewhere (a motion of its own, not the same one split
+// by noise) and, where the set carries a pose prior, lies inside the prior's gate too (a prior that
+// tells the two apart decides). While rivals are found, take their correspondences away too and
+// solve again; a runner-up that is the accepted motion or an earlier rival again (within
+// kSameMotion tolerances: a remnant split by noise, a k-NN matching's near copy) is taken away
+// uncounted and the search goes on behind it. The pair is ambiguous when its rivals together hold
 // at least as many inliers as the accepted motion: one alias as large as the truth (a tie), or a
 // family of copies (a periodic scene's shifts by one, two, ... periods) that outweighs any one of
 // them. A true motion with one weaker alias is kept, whatever the ratio of the two. Each rival's p
 // is the calibrated rule's for its score (the same permuted sets).
-// BENCHMARK.md sections 36 and 38 measure it.
+// BENCHMARK.md sections 36, 38 and 40 measure it.
 #include <optional>
 
 #include "acceptance/accept_params.hpp"

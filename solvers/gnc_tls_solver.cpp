@@ -20,6 +20,7 @@ namespace {
 class GncTlsSolver : public SolverBase<GncTlsSolver> {
  public:
   bool solves_concurrently() const override { return true; }
+  bool searches() const override { return false; }  // GNC converges from one start
 
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {

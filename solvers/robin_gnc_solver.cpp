@@ -36,6 +36,7 @@ namespace {
 class RobinGncSolver : public SolverBase<RobinGncSolver> {
  public:
   bool solves_concurrently() const override { return true; }
+  bool searches() const override { return false; }  // GNC converges from one start
 
   template <int Dim>
   Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {

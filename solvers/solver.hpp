@@ -60,6 +60,11 @@ class Solver {
   /// state shared between calls); the calibrated rule then solves its null sets in parallel
   /// (calibration.hpp). Peers that fork or run OpenMP keep the default, no.
   virtual bool solves_concurrently() const { return false; }
+  /// Whether `solve` searches for the largest consensus (a clique, sampled hypotheses) rather than
+  /// converging from one start (GNC on all correspondences). The runner-up test needs a search to
+  /// find the other motions a set holds: for a solver that has none it searches with `clique`
+  /// (acceptance/runner_up.hpp).
+  virtual bool searches() const { return true; }
 };
 
 /// Implements both virtual entry points with one template `Derived::run<Dim>`, so hot loops are

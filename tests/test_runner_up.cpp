@@ -71,6 +71,33 @@ TEST(RunnerUp, ACorridorsShiftedCopiesAreAnAliasThePermutationNullAccepts) {
   }
 }
 
+TEST(RunnerUp, SolversWithoutASearchHaveTheirRunnerUpsFoundByTheClique) {
+  register_builtin_solvers();
+  // GNC converges from one start: on the corridor's copies left after the accepted one it finds a
+  // blend of equal copies, or nothing, so its own runner-up never shows the family.
+  for (const char* name : {"gnc-tls", "robin-gnc"}) {
+    const auto solver = SolverRegistry::create(name);
+    EXPECT_FALSE(solver->searches()) << name;
+    int plain_accepted = 0;
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+      const LabeledSet<3> set = draw("repetitive", seed % 2 ? 1.0 : 0.8, seed, /*negative=*/true);
+      const Verification<3> plain = verify(*solver, set.corr, SolverParams{}, with_test(0.0));
+      const Verification<3> tested = verify(*solver, set.corr, SolverParams{}, AcceptParams{});
+      EXPECT_FALSE(tested.result.accepted) << name << " seed " << seed;
+      if (!plain.result.accepted) continue;
+      ++plain_accepted;
+      // The rivals are the other copies, whole: together at least the accepted one's inliers.
+      ASSERT_TRUE(tested.runner_up.has_value()) << name << " seed " << seed;
+      EXPECT_TRUE(tested.runner_up->ambiguous) << name << " seed " << seed;
+      EXPECT_GE(tested.runner_up->rival_support, static_cast<int>(tested.result.inliers.size()))
+          << name << " seed " << seed;
+    }
+    EXPECT_GE(plain_accepted, 6) << name << ": the null alone accepts the corridor's aliases";
+  }
+  EXPECT_TRUE(SolverRegistry::create("teaser")->searches()) << "teaser's clique is its search";
+  EXPECT_TRUE(SolverRegistry::create("lo-ransac")->searches());
+}
+
 TEST(RunnerUp, OneRivalDecidesOnlyWhenItHoldsAsManyAsTheAcceptedMotion) {
   register_builtin_solvers();
   // 90 inliers, a wrong rigid group of 108 at least 30 degrees away: the group is the larger
