@@ -6,6 +6,7 @@
 #include <optional>
 #include <random>
 #include <stdexcept>
+#include <string>
 
 #include "acceptance/prior_gate.hpp"
 #include "core/parallel.hpp"
@@ -95,7 +96,7 @@ void fit_and_score(Calibration& c, const std::vector<int>& scores, int observed,
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                       const SolverParams& params, const AcceptParams& accept, int observed,
-                      const Deadline& budget) {
+                      const Deadline& budget, NullDraws* solved) {
   StopWatch clock;
   const int draws = accept.null_draws;
   const double alpha = accept.alpha;
@@ -162,17 +163,50 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
   // Past K draws, while the range of p holds alpha, up to `most` in all.
   const int most = std::max(draws, accept.max_null_draws);
   std::vector<int> scores;
-  // Takes draw k's result; true when no further draw can change the decision.
-  auto take = [&](int k, const Result<Dim>& r) {
+  // One draw's outcome: its score (with a limited draw's proven bound), whether the time limit
+  // stopped it, and whether the pair's budget cut it short with no bound (it says nothing of
+  // chance: dropped, and the draws end there).
+  struct Draw {
+    int score = 0;
+    bool limited = false, cut = false;
+    std::optional<std::string> error;  ///< the solve failed (thrown where the draw is taken)
+  };
+  auto cached = [&](int k) -> std::optional<Draw> {
+    if (!solved || k >= static_cast<int>(solved->score.size())) return std::nullopt;
+    const int score = solved->score[static_cast<std::size_t>(k)];
+    if (score < 0) return std::nullopt;
+    Draw d;
+    d.score = score;
+    d.limited = solved->limited[static_cast<std::size_t>(k)] != 0;
+    return d;
+  };
+  auto solve_draw = [&](int k) {
+    const Result<Dim> r = solver.solve(null_set(k), draw_params(k));
+    Draw d;
     if (r.status == Status::error) {
-      throw std::runtime_error("null model: permuted set " + std::to_string(k) +
-                               " failed: " + r.message);
+      d.error = "null model: permuted set " + std::to_string(k) + " failed: " + r.message;
+      return d;
     }
-    int score = static_cast<int>(r.inliers.size());
-    if (r.status == Status::time_limit) {
-      ++c.limited_draws;
-      if (r.omega_upper_bound) score = std::max(score, *r.omega_upper_bound);
+    d.score = static_cast<int>(r.inliers.size());
+    d.limited = r.status == Status::time_limit;
+    if (d.limited && r.omega_upper_bound) d.score = std::max(d.score, *r.omega_upper_bound);
+    d.cut = d.limited && !r.omega_upper_bound && budget.expired();
+    return d;
+  };
+  auto keep = [&](int k, const Draw& d) {
+    if (d.error) throw std::runtime_error(*d.error);
+    if (!solved || d.cut) return;
+    if (static_cast<int>(solved->score.size()) <= k) {
+      solved->score.resize(static_cast<std::size_t>(k) + 1, -1);
+      solved->limited.resize(static_cast<std::size_t>(k) + 1, 0);
     }
+    solved->score[static_cast<std::size_t>(k)] = d.score;
+    solved->limited[static_cast<std::size_t>(k)] = d.limited ? 1 : 0;
+  };
+  // Takes draw k's outcome; true when no further draw can change the decision.
+  auto take = [&](int k, const Draw& d) {
+    const int score = d.score;
+    if (d.limited) ++c.limited_draws;
     scores.push_back(score);
     const int done = k + 1;
     if (done < draws) {
@@ -189,36 +223,44 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
     return !(optimistic_fit(scores).p_value(observed) < alpha &&
              alpha <= cautious_fit(scores).p_value(observed));
   };
-  // A draw the budget cut short says nothing of chance (a best-so-far below the draw's score),
-  // unless it proved an upper bound: it is dropped, and the draws end there.
-  auto cut = [&](const Result<Dim>& r) {
-    return r.status == Status::time_limit && !r.omega_upper_bound && budget.expired();
-  };
   bool settled = false, out_of_budget = false;
   if (workers <= 1) {
     for (int k = 0; k < most && !settled; ++k) {
-      if (budget.expired()) break;
-      const Result<Dim> r = solver.solve(null_set(k), draw_params(k));
-      if (cut(r)) break;
-      settled = take(k, r);
+      std::optional<Draw> d = cached(k);
+      if (!d) {
+        if (budget.expired()) break;
+        d = solve_draw(k);
+        keep(k, *d);
+        if (d->cut) break;
+      }
+      settled = take(k, *d);
     }
   } else {
     WorkerPool pool(workers);
-    std::vector<Result<Dim>> batch(static_cast<std::size_t>(workers));
+    std::vector<std::optional<Draw>> batch(static_cast<std::size_t>(workers));
     for (int first = 0, count = 0; first < most && !settled && !out_of_budget; first += count) {
-      if (budget.expired()) break;
       // A batch does not cross the K-th draw, past which most sets are not drawn.
       count = std::min(workers, (first < draws ? draws : most) - first);
-      pool.parallel_for(count, [&](int j) {
-        batch[static_cast<std::size_t>(j)] = solver.solve(null_set(first + j), draw_params(first + j));
-      });
+      bool all_kept = true;
+      for (int j = 0; j < count; ++j) {
+        batch[static_cast<std::size_t>(j)] = cached(first + j);
+        all_kept = all_kept && batch[static_cast<std::size_t>(j)].has_value();
+      }
+      if (!all_kept) {
+        if (budget.expired()) break;
+        pool.parallel_for(count, [&](int j) {
+          auto& slot = batch[static_cast<std::size_t>(j)];
+          if (!slot) slot = solve_draw(first + j);
+        });
+      }
       for (int j = 0; j < count && !settled; ++j) {
-        const Result<Dim>& r = batch[static_cast<std::size_t>(j)];
-        if (cut(r)) {
+        const Draw& d = *batch[static_cast<std::size_t>(j)];
+        keep(first + j, d);
+        if (d.cut) {
           out_of_budget = true;
           break;
         }
-        settled = take(first + j, r);
+        settled = take(first + j, d);
       }
     }
   }
@@ -261,7 +303,7 @@ void decide_calibrated(Result<Dim>& result, const Correspondences<Dim>& corr,
   template Correspondences<D> permute_targets<D>(const Correspondences<D>&, std::uint64_t); \
   template Calibration calibrate<D>(const Solver&, const Correspondences<D>&,               \
                                     const SolverParams&, const AcceptParams&, int,          \
-                                    const Deadline&);                                       \
+                                    const Deadline&, NullDraws*);                           \
   template void decide_calibrated<D>(Result<D>&, const Correspondences<D>&, const Calibration&, \
                                      const AcceptParams&);
 VB_INSTANTIATE(2)

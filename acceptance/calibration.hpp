@@ -55,6 +55,16 @@ struct Calibration {
   bool budget_exhausted = false;
 };
 
+/// The null draws one calibration solved, by draw index: what calibrations of other scores on the
+/// same set, with the same solver and parameters, would solve again (the runner-up test's rivals,
+/// runner_up.hpp). A draw's result depends on those alone (its permuted set and seed come from
+/// params.seed and its index), so a draw kept here is taken as it is instead of solved again.
+/// Draws the budget cut short are not kept.
+struct NullDraws {
+  std::vector<int> score;      ///< per draw index: its score (an upper bound where limited); -1 = not solved
+  std::vector<char> limited;   ///< stopped by the time limit
+};
+
 /// Runs `solver` on up to accept.null_draws = K permuted sets (draw k from
 /// derive_seed(params.seed, {kNullStream, k}); the solver's own seed derived the same way) and
 /// scores `observed` against them. Stops early where the decision of all K draws is already known:
@@ -74,11 +84,13 @@ struct Calibration {
 /// time on one thread each when the solver solves_concurrently() (the same result for any count).
 /// The draws share `budget` (the pair's deadline, verify()): each null solve may take what is
 /// left, and none starts once it passed (budget_exhausted).
+/// `draws`, when given, supplies the draws an earlier calibration of this set solved and keeps
+/// those this one solves (NullDraws); the result is the same with or without it.
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
                       const SolverParams& params, const AcceptParams& accept, int observed,
-                      const Deadline& budget = Deadline::never());
+                      const Deadline& budget = Deadline::never(), NullDraws* draws = nullptr);
 
 /// Applies the rule to a finished solve: under `count` leaves the solver's decision; under
 /// `pvalue` accepts when p < alpha, the inliers pin down a motion (pins_motion) and, where the set

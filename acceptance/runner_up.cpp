@@ -75,7 +75,7 @@ template <int Dim>
 std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Dim>& corr,
                                   const Result<Dim>& accepted, const SolverParams& params,
                                   const Calibration& calibration, const AcceptParams& accept,
-                                  const Deadline& budget) {
+                                  const Deadline& budget, NullDraws* draws) {
   const StopWatch clock;
   // The search the runner-ups are found and calibrated with: the solver's own, or `clique` for a
   // solver without one (GNC from one start converges to a blend of equal copies, or to nothing,
@@ -86,6 +86,10 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     clique = SolverRegistry::create("clique");
   }
   const Solver& search = clique ? *clique : solver;
+  // The search's null draws, each solved once over the rivals' calibrations (the solver's come
+  // from the accepted motion's).
+  NullDraws clique_draws;
+  NullDraws* search_draws = clique ? &clique_draws : draws;
   const double tol = explained_tolerance(params);
   const Rigid<Dim>& T = accepted.T_target_source;
   const int best = static_cast<int>(accepted.inliers.size());
@@ -148,7 +152,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     // significant exactly when the rule would accept that score.
     AcceptParams at = accept;
     at.alpha = accept.runner_up_level();
-    const Calibration own = calibrate(search, corr, params, at, score, budget);
+    const Calibration own = calibrate(search, corr, params, at, score, budget, search_draws);
     // The chance level the excesses are measured from: solved draws where either null has them
     // (the search's own where it is not the solver's).
     const NullFit& null =
@@ -187,10 +191,10 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
 template std::optional<RunnerUp> runner_up<2>(const Solver&, const Correspondences<2>&,
                                               const Result<2>&, const SolverParams&,
                                               const Calibration&, const AcceptParams&,
-                                              const Deadline&);
+                                              const Deadline&, NullDraws*);
 template std::optional<RunnerUp> runner_up<3>(const Solver&, const Correspondences<3>&,
                                               const Result<3>&, const SolverParams&,
                                               const Calibration&, const AcceptParams&,
-                                              const Deadline&);
+                                              const Deadline&, NullDraws*);
 
 }  // namespace verifybench

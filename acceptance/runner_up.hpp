@@ -52,12 +52,13 @@ double explained_tolerance(const SolverParams& params);
 
 /// The runner-up of `accepted` (a result the rule accepted, `calibration` its null) on `corr`;
 /// nullopt when nothing is left to solve or the solve failed. The solves take what is left of
-/// `budget`; the runner-up's seed is derived from params.seed.
+/// `budget`; the runner-up's seed is derived from params.seed. `draws`: the null draws the
+/// accepted motion's calibration solved (calibrate()), taken again by the rivals' calibrations.
 template <int Dim>
 std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Dim>& corr,
                                   const Result<Dim>& accepted, const SolverParams& params,
                                   const Calibration& calibration, const AcceptParams& accept,
-                                  const Deadline& budget);
+                                  const Deadline& budget, NullDraws* draws = nullptr);
 
 /// Correspondences within this many tolerances of the accepted motion are its own (a k-NN
 /// matching's neighbouring targets, a voxel away, form a near copy of the accepted set).

@@ -20,12 +20,14 @@ Verification<Dim> verify(const Solver& solver, const Correspondences<Dim>& corr,
   v.solve_ms = clock.ms();
   if (accept.rule == AcceptParams::Rule::pvalue && v.result.status != Status::error) {
     try {
-      v.calibration =
-          calibrate(solver, corr, params, accept,
-                                static_cast<int>(v.result.inliers.size()), budget);
+      // The null draws solved once: the runner-up test's calibrations take them again.
+      NullDraws draws;
+      v.calibration = calibrate(solver, corr, params, accept,
+                                static_cast<int>(v.result.inliers.size()), budget, &draws);
       decide_calibrated(v.result, corr, *v.calibration, accept);
       if (v.result.accepted && accept.runner_up_level() > 0.0) {
-        v.runner_up = runner_up(solver, corr, v.result, params, *v.calibration, accept, budget);
+        v.runner_up =
+            runner_up(solver, corr, v.result, params, *v.calibration, accept, budget, &draws);
         if (v.runner_up && v.runner_up->ambiguous) {
           v.result.accepted = false;
           if (v.result.status == Status::ok) v.result.status = Status::rejected;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -365,6 +366,87 @@ TEST(Calibration, DrawsOnWhereTheRangeOfPHoldsAlpha) {
     }
     EXPECT_GT(tried, 0) << name;
     EXPECT_GT(settled, 0) << name;  // some ranges drop alpha before the cap
+  }
+}
+
+// Forwards to a registry solver and counts its solves.
+class CountingSolver : public Solver {
+ public:
+  explicit CountingSolver(const std::string& name) : inner_(SolverRegistry::create(name)) {}
+  Result<2> solve(const Correspondences<2>& c, const SolverParams& p) const override {
+    ++solves;
+    return inner_->solve(c, p);
+  }
+  Result<3> solve(const Correspondences<3>& c, const SolverParams& p) const override {
+    ++solves;
+    return inner_->solve(c, p);
+  }
+  std::optional<int> score_bound(const Correspondences<2>& c, const SolverParams& p, int k) const override {
+    return inner_->score_bound(c, p, k);
+  }
+  std::optional<int> score_bound(const Correspondences<3>& c, const SolverParams& p, int k) const override {
+    return inner_->score_bound(c, p, k);
+  }
+  bool solves_concurrently() const override { return inner_->solves_concurrently(); }
+  mutable std::atomic<int> solves{0};
+
+ private:
+  std::unique_ptr<Solver> inner_;
+};
+
+TEST(Calibration, DrawsOneCalibrationSolvedAreTakenByTheNextUnsolved) {
+  // The runner-up test calibrates several scores of one set: each null draw is solved once. Every
+  // calibration with the kept draws gives exactly what one without them gives, and solves only
+  // the draws no earlier one solved; the kept scores are the hand-solved draws' (the oracle).
+  SolverParams params;
+  params.eps = 0.3;
+  params.inlier_threshold = 0.15;
+  params.ransac.iterations = 300;
+  AcceptParams accept;
+  accept.null_draws = 8;
+  accept.max_null_draws = 40;
+  for (const char* name : {"ransac", "clique"}) {
+    for (int threads : {1, 3}) {
+      const CountingSolver counting(name);
+      const auto plain = SolverRegistry::create(name);
+      const LabeledSet<3> set = draw<3>(300, 0.5, 5, true);
+      params.seed = derive_seed(5, {13});
+      params.threads = threads;
+      NullDraws kept;
+      int solved_before = 0, reused = 0;
+      // Scores from chance level (decided at the first draw that reaches them) to far beyond it
+      // (the range of p holds alpha on the way: draws on), in an order that revisits draws.
+      for (int observed : {12, 3, 20, 9, 40, 15, 6, 30}) {
+        const std::string label = std::string(name) + " threads " + std::to_string(threads) +
+                                  " observed " + std::to_string(observed);
+        counting.solves = 0;
+        const Calibration with = calibrate(counting, set.corr, params, accept, observed,
+                                           Deadline::never(), &kept);
+        const Calibration without = calibrate(*plain, set.corr, params, accept, observed);
+        EXPECT_EQ(with.null.scores, without.null.scores) << label;
+        EXPECT_EQ(with.p_value, without.p_value) << label;
+        EXPECT_EQ(with.screened, without.screened) << label;
+        const int draws = with.screened ? 0 : with.null.draws;
+        // Solved: the draws past those kept before (a batch of 3 may solve up to 2 beyond).
+        const int fresh = std::max(0, draws - solved_before);
+        EXPECT_GE(counting.solves.load(), fresh) << label;
+        EXPECT_LE(counting.solves.load(), fresh + threads - 1) << label;
+        reused += std::min(draws, solved_before);
+        int known = 0;
+        for (std::size_t k = 0; k < kept.score.size(); ++k) {
+          if (kept.score[k] < 0) continue;
+          ++known;
+          if (k < 12) {
+            SolverParams one = params;
+            one.threads = 1;
+            EXPECT_EQ(kept.score[k], hand_draw(*plain, set.corr, one, static_cast<int>(k)))
+                << label << " draw " << k;
+          }
+        }
+        solved_before = known;
+      }
+      EXPECT_GT(reused, 0) << name;
+    }
   }
 }
 
