@@ -246,8 +246,14 @@ Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,
         batch[static_cast<std::size_t>(j)] = cached(first + j);
         all_kept = all_kept && batch[static_cast<std::size_t>(j)].has_value();
       }
+      if (!all_kept && budget.expired()) {
+        // As one by one: the kept draws up to the first unsolved one are taken, then the draws end.
+        for (int j = 0; j < count && !settled && batch[static_cast<std::size_t>(j)]; ++j) {
+          settled = take(first + j, *batch[static_cast<std::size_t>(j)]);
+        }
+        break;
+      }
       if (!all_kept) {
-        if (budget.expired()) break;
         pool.parallel_for(count, [&](int j) {
           auto& slot = batch[static_cast<std::size_t>(j)];
           if (!slot) slot = solve_draw(first + j);

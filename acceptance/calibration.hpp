@@ -57,9 +57,12 @@ struct Calibration {
 
 /// The null draws one calibration solved, by draw index: what calibrations of other scores on the
 /// same set, with the same solver and parameters, would solve again (the runner-up test's rivals,
-/// runner_up.hpp). A draw's result depends on those alone (its permuted set and seed come from
-/// params.seed and its index), so a draw kept here is taken as it is instead of solved again.
-/// Draws the budget cut short are not kept.
+/// runner_up.hpp). A draw's set and seed come from params.seed and its index alone, so a draw
+/// kept here is taken as it is instead of solved again: the same result wherever the pair's budget
+/// does not run out. Where it does, kept draws are still taken after it (a calibration goes as far
+/// as the draws already solved, for any thread count), and a draw a shorter remaining budget
+/// stopped at its limit (an upper bound counted) may be taken solved. Draws the budget cut short
+/// without a bound are not kept.
 struct NullDraws {
   std::vector<int> score;      ///< per draw index: its score (an upper bound where limited); -1 = not solved
   std::vector<char> limited;   ///< stopped by the time limit
@@ -85,7 +88,8 @@ struct NullDraws {
 /// The draws share `budget` (the pair's deadline, verify()): each null solve may take what is
 /// left, and none starts once it passed (budget_exhausted).
 /// `draws`, when given, supplies the draws an earlier calibration of this set solved and keeps
-/// those this one solves (NullDraws); the result is the same with or without it.
+/// those this one solves (NullDraws); the result is the same with or without it where the budget
+/// does not run out.
 /// Throws std::runtime_error when a null solve fails.
 template <int Dim>
 Calibration calibrate(const Solver& solver, const Correspondences<Dim>& corr,

@@ -8,6 +8,7 @@
 #include "acceptance/prior_gate.hpp"
 #include "core/random.hpp"
 #include "core/timer.hpp"
+#include "graph/bitgraph.hpp"
 #include "solvers/registry.hpp"
 
 namespace verifybench {
@@ -81,7 +82,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
   // solver without one (GNC from one start converges to a blend of equal copies, or to nothing,
   // and so never finds a periodic scene's family: BENCHMARK.md 40).
   std::unique_ptr<Solver> clique;
-  if (!solver.searches()) {
+  if (!solver.searches() && BitGraph::bytes_for(corr.size()) <= params.max_graph_bytes) {
     register_solvers();
     clique = SolverRegistry::create("clique");
   }
@@ -154,7 +155,7 @@ std::optional<RunnerUp> runner_up(const Solver& solver, const Correspondences<Di
     at.alpha = accept.runner_up_level();
     const Calibration own = calibrate(search, corr, params, at, score, budget, search_draws);
     // The chance level the excesses are measured from: solved draws where either null has them
-    // (the search's own where it is not the solver's).
+    // (the search's own where it is not the solver's, screened or not).
     const NullFit& null =
         !own.screened || calibration.screened || clique ? own.null : calibration.null;
     note(own.p_value, limited_solve || own.budget_exhausted);

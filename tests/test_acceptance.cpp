@@ -388,6 +388,7 @@ class CountingSolver : public Solver {
     return inner_->score_bound(c, p, k);
   }
   bool solves_concurrently() const override { return inner_->solves_concurrently(); }
+  bool searches() const override { return inner_->searches(); }
   mutable std::atomic<int> solves{0};
 
  private:
@@ -447,6 +448,54 @@ TEST(Calibration, DrawsOneCalibrationSolvedAreTakenByTheNextUnsolved) {
       }
       EXPECT_GT(reused, 0) << name;
     }
+  }
+}
+
+// Forwards to `clique` but fails on null draw `bad` (recognised by the seed calibrate() gives it).
+class FailingDrawSolver : public SolverBase<FailingDrawSolver> {
+ public:
+  FailingDrawSolver(std::uint64_t seed, int bad)
+      : inner_(SolverRegistry::create("clique")),
+        bad_seed_(derive_seed(derive_seed(seed, {kNullStream, std::uint64_t(bad)}), {1})) {}
+  bool solves_concurrently() const override { return true; }
+  template <int Dim>
+  Result<Dim> run(const Correspondences<Dim>& corr, const SolverParams& params) const {
+    if (params.seed == bad_seed_) throw std::runtime_error("draw refused");
+    return inner_->solve(corr, params);
+  }
+
+ private:
+  std::unique_ptr<Solver> inner_;
+  std::uint64_t bad_seed_;
+};
+
+TEST(Calibration, AFailingDrawFailsTheCalibrationWithOrWithoutKeptDraws) {
+  // Draw 1 fails: a score no draw reaches (the earliest stop is after 3 draws) fails every calibration,
+  // one by one or 3 at a time, with draws kept from an earlier one that stopped at draw 0 or not;
+  // a score the first draws settle never reaches it, kept draws or not.
+  SolverParams params;
+  params.eps = 0.3;
+  params.inlier_threshold = 0.15;
+  params.seed = 21;
+  AcceptParams accept;
+  accept.null_draws = 8;
+  const FailingDrawSolver solver(params.seed, 1);
+  const LabeledSet<3> set = draw<3>(300, 0.5, 6, true);
+  for (int threads : {1, 3}) {
+    params.threads = threads;
+    const std::string label = "threads " + std::to_string(threads);
+    NullDraws kept;
+    EXPECT_NO_THROW(calibrate(solver, set.corr, params, accept, 1, Deadline::never(), &kept)) << label;
+    for (NullDraws* cache : {static_cast<NullDraws*>(nullptr), &kept}) {
+      try {
+        calibrate(solver, set.corr, params, accept, 200, Deadline::never(), cache);
+        ADD_FAILURE() << label << ": no error";
+      } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("permuted set 1 failed: draw refused"), std::string::npos)
+            << label << ": " << e.what();
+      }
+    }
+    EXPECT_EQ(kept.score.size(), 1u) << label << ": draw 0 kept, the failed draw 1 not";
   }
 }
 
