@@ -22,16 +22,6 @@ constexpr int kMaxProbeClass = 2;
 constexpr int kMaxBranching = 32;
 constexpr int kCoverMargin = 16;  // as BranchAndBound::near_clique()
 
-// Counts of remaining vertices saturate at 3: the tests need 0, 1, 2 and "more" only, and a
-// portable build has no POPCNT instruction (a library call per word).
-constexpr int kMany = 3;
-inline int add_bits(int c, Word w) {
-  if (!w) return c;
-  w &= w - 1;
-  if (!w) return std::min(c + 1, kMany);
-  return std::min(c + ((w & (w - 1)) ? kMany : 2), kMany);
-}
-
 inline void set_bit(Word* b, int v) { b[v / kBits] |= Word{1} << (v % kBits); }
 inline void clear_bit(Word* b, int v) { b[v / kBits] &= ~(Word{1} << (v % kBits)); }
 }  // namespace
@@ -69,70 +59,93 @@ int SatBranchAndBound::colour(const Word* P, int depth, int kmin) {
                        &colours_, &coloured_, keep_low ? classes_.data() : nullptr);
 }
 
-int SatBranchAndBound::only_neighbour(const Word* C, const Word* N) const {
-  int hits = 0, u = -1;
-  for (int x = lo_; x < end_ && hits < 2; ++x) {
-    const Word both = C[x] & N[x];
-    if (!both) continue;
-    hits += (both & (both - 1)) ? 2 : 1;
-    u = x * kBits + lowest_bit(both);
+void SatBranchAndBound::index_classes(int low) {
+  const std::size_t n = static_cast<std::size_t>(g_.size());
+  if (class_of_.size() < n) {
+    class_of_.assign(n, -1);
+    removed_.assign(n, 0);
   }
-  return hits == 1 ? u : -1;
+  A_.assign(static_cast<std::size_t>(W_), 0);
+  size_.assign(static_cast<std::size_t>(low), 0);
+  for (int k = 0; k < low; ++k) {
+    const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
+    for (int x = lo_; x < end_; ++x) {
+      A_[static_cast<std::size_t>(x)] |= C[x];
+      for (Word y = C[x]; y; y &= y - 1) {
+        class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(y))] = k;
+        ++size_[static_cast<std::size_t>(k)];
+      }
+    }
+  }
+  count_.resize(static_cast<std::size_t>(low));
+  unit_of_.assign(static_cast<std::size_t>(low), -1);
+  reason_head_.assign(static_cast<std::size_t>(low), -1);
+  tally_.assign(static_cast<std::size_t>(low), 0);
+}
+
+void SatBranchAndBound::join(int v, int k) {
+  set_bit(classes_.data() + static_cast<std::size_t>(k) * W_, v);
+  set_bit(A_.data(), v);
+  class_of_[static_cast<std::size_t>(v)] = k;
+  ++size_[static_cast<std::size_t>(k)];
+}
+
+void SatBranchAndBound::drop(int w) {
+  removed_[static_cast<std::size_t>(w)] = 1;
+  trail_.push_back(w);
+  --count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])];
+}
+
+void SatBranchAndBound::undo(std::size_t trail_size) {
+  while (trail_.size() > trail_size) {
+    const int w = trail_.back();
+    trail_.pop_back();
+    removed_[static_cast<std::size_t>(w)] = 0;
+    ++count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])];
+  }
+}
+
+int SatBranchAndBound::member(int k) const {
+  const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
+  for (int x = lo_; x < end_; ++x)
+    for (Word y = C[x]; y; y &= y - 1) {
+      const int u = x * kBits + lowest_bit(y);
+      if (!removed_[static_cast<std::size_t>(u)]) return u;
+    }
+  return -1;
 }
 
 bool SatBranchAndBound::renumber(int v, int low) {
   const Word* N = g_.row(v);
   for (int k1 = 0; k1 < low - 1; ++k1) {
-    if (frozen_[static_cast<std::size_t>(k1)]) continue;
+    if (count_[static_cast<std::size_t>(k1)] != 1) continue;  // v's neighbours there (or frozen)
     Word* C1 = classes_.data() + static_cast<std::size_t>(k1) * W_;
-    const int u = only_neighbour(C1, N);
-    if (u < 0) continue;
+    int u = -1;
+    for (int x = lo_; x < end_ && u < 0; ++x)
+      if (const Word both = C1[x] & N[x]) u = x * kBits + lowest_bit(both);
+    // A class k2 > k1 where u has no neighbour: all of its members are u's non-neighbours.
     const Word* Nu = g_.row(u);
-    for (int k2 = low - 1; k2 > k1; --k2) {  // later classes are smaller: try them first
-      if (frozen_[static_cast<std::size_t>(k2)]) continue;
-      Word* C2 = classes_.data() + static_cast<std::size_t>(k2) * W_;
-      Word seen = 0;
-      for (int x = lo_; x < end_ && !seen; ++x) seen = C2[x] & Nu[x];
-      if (seen) continue;
-      clear_bit(C1, u);
-      set_bit(C2, u);
-      set_bit(C1, v);
-      return true;
+    touched_.clear();
+    for (int x = lo_; x < end_; ++x)
+      for (Word y = A_[static_cast<std::size_t>(x)] & ~Nu[x]; y; y &= y - 1) {
+        const int w = x * kBits + lowest_bit(y);
+        if (w == u) continue;
+        const int k = class_of_[static_cast<std::size_t>(w)];
+        if (tally_[static_cast<std::size_t>(k)]++ == 0) touched_.push_back(k);
+      }
+    int k2 = -1;
+    for (int k : touched_) {
+      if (k > k1 && k > k2 && !frozen_[static_cast<std::size_t>(k)] &&
+          tally_[static_cast<std::size_t>(k)] == size_[static_cast<std::size_t>(k)])
+        k2 = k;
+      tally_[static_cast<std::size_t>(k)] = 0;
     }
-  }
-  return false;
-}
-
-bool SatBranchAndBound::up_reset(int v, int low) {
-  const std::size_t rows = static_cast<std::size_t>(low) + 1;
-  if (rem_.size() < rows * W_) rem_.resize(rows * W_);
-  count_.assign(rows, -1);  // -1: out of the formula (frozen, or the singleton {v} itself)
-  unit_of_.assign(rows, -1);
-  reason_head_.assign(rows, -1);
-  queue_.clear();
-  reason_class_.clear();
-  reason_next_.clear();
-  // v true: every class keeps only v's neighbours. v's singleton never empties (every vertex
-  // left is its neighbour), so it takes no part beyond this step, and no reason names it: every
-  // subset found holds it.
-  const Word* N = g_.row(v);
-  for (int k = 0; k < low; ++k) {
-    if (frozen_[static_cast<std::size_t>(k)]) continue;
-    Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
-    Word* R = rem_.data() + static_cast<std::size_t>(k) * W_;
-    int c = 0;
-    for (int x = lo_; x < end_; ++x) c = add_bits(c, R[x] = C[x] & N[x]);
-    if (c == 0) {  // v fits this class (re-numbering made room): it joins it
-      set_bit(C, v);
-      return true;
-    }
-    count_[static_cast<std::size_t>(k)] = c;
-    if (c == 1) {
-      int u = -1;
-      for (int x = lo_; x < end_ && u < 0; ++x)
-        if (R[x]) u = x * kBits + lowest_bit(R[x]);
-      up_set_unit(k, u);
-    }
+    if (k2 < 0) continue;
+    clear_bit(C1, u);
+    --size_[static_cast<std::size_t>(k1)];
+    join(u, k2);
+    join(v, k1);
+    return true;
   }
   return false;
 }
@@ -142,31 +155,30 @@ void SatBranchAndBound::up_set_unit(int cls, int u) {
   queue_.push_back(cls);
 }
 
-int SatBranchAndBound::up_propagate(int low, int from) {
+int SatBranchAndBound::up_propagate(int from) {
   for (std::size_t qi = static_cast<std::size_t>(from); qi < queue_.size(); ++qi) {
     const int q = queue_[qi];
-    const Word* N = g_.row(unit_of_[static_cast<std::size_t>(q)]);
-    for (int j = 0; j <= low; ++j) {
-      int& c = count_[static_cast<std::size_t>(j)];
-      if (j == q || c <= 0) continue;
-      Word* R = rem_.data() + static_cast<std::size_t>(j) * W_;
-      Word gone = 0;
-      for (int x = lo_; x < end_; ++x) gone |= R[x] & ~N[x];
-      if (!gone) continue;
-      int left = 0;
-      for (int x = lo_; x < end_; ++x) left = add_bits(left, R[x] &= N[x]);
-      c = left;
-      reason_class_.push_back(q);
-      reason_next_.push_back(reason_head_[static_cast<std::size_t>(j)]);
-      reason_head_[static_cast<std::size_t>(j)] = static_cast<int>(reason_class_.size()) - 1;
-      if (left == 0) return j;
-      if (left == 1 && unit_of_[static_cast<std::size_t>(j)] < 0) {
-        int u = -1;
-        for (int x = lo_; x < end_ && u < 0; ++x)
-          if (R[x]) u = x * kBits + lowest_bit(R[x]);
-        up_set_unit(j, u);
+    const int u = unit_of_[static_cast<std::size_t>(q)];
+    const Word* N = g_.row(u);
+    // u true: each of its non-neighbours leaves its class.
+    for (int x = lo_; x < end_; ++x)
+      for (Word y = A_[static_cast<std::size_t>(x)] & ~N[x]; y; y &= y - 1) {
+        const int w = x * kBits + lowest_bit(y);
+        const int j = class_of_[static_cast<std::size_t>(w)];
+        if (j == q || w == u || removed_[static_cast<std::size_t>(w)]) continue;
+        int& c = count_[static_cast<std::size_t>(j)];
+        if (c <= 0) continue;  // frozen
+        drop(w);
+        int& head = reason_head_[static_cast<std::size_t>(j)];
+        if (head < 0 || reason_class_[static_cast<std::size_t>(head)] != q) {
+          reason_class_.push_back(q);
+          reason_owner_.push_back(j);
+          reason_next_.push_back(head);
+          head = static_cast<int>(reason_class_.size()) - 1;
+        }
+        if (c == 0) return j;
+        if (c == 1 && unit_of_[static_cast<std::size_t>(j)] < 0) up_set_unit(j, member(j));
       }
-    }
   }
   return -1;
 }
@@ -189,44 +201,80 @@ void SatBranchAndBound::mark_reasons(int cls, std::vector<char>& marks) {
   }
 }
 
-bool SatBranchAndBound::conflict(int v, int low) {
-  if (up_reset(v, low)) return true;
-  if (queue_.empty() && kMaxProbeClass < 2) return false;
-  const std::size_t rows = static_cast<std::size_t>(low) + 1;
-  marks_.assign(rows, 0);
-  int empty = up_propagate(low, 0);
+bool SatBranchAndBound::test(int v, int low) {
+  // v true: every class keeps only v's neighbours. v's singleton never empties (every vertex
+  // left is its neighbour), so no reason names it: every subset found holds it.
+  for (int k = 0; k < low; ++k)
+    count_[static_cast<std::size_t>(k)] =
+        frozen_[static_cast<std::size_t>(k)] ? -1 : size_[static_cast<std::size_t>(k)];
+  const Word* N = g_.row(v);
+  for (int x = lo_; x < end_; ++x)
+    for (Word y = A_[static_cast<std::size_t>(x)] & ~N[x]; y; y &= y - 1) {
+      const int w = x * kBits + lowest_bit(y);
+      if (count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])] > 0) drop(w);
+    }
+  bool out = false;
+  for (int k = 0; k < low && !out; ++k) {
+    if (count_[static_cast<std::size_t>(k)] != 0) continue;
+    undo(0);
+    join(v, k);  // v fits this class (re-numbering made room)
+    out = true;
+  }
+  if (!out && renumber(v, low)) {
+    undo(0);
+    out = true;
+  }
+  if (!out) {
+    for (int k = 0; k < low; ++k)
+      if (count_[static_cast<std::size_t>(k)] == 1) up_set_unit(k, member(k));
+    out = conflict(low);
+    for (int k : queue_) unit_of_[static_cast<std::size_t>(k)] = -1;
+    queue_.clear();
+    for (int k : reason_owner_) reason_head_[static_cast<std::size_t>(k)] = -1;
+    reason_class_.clear();
+    reason_owner_.clear();
+    reason_next_.clear();
+    undo(0);
+  }
+  return out;
+}
+
+bool SatBranchAndBound::conflict(int low) {
+  marks_.assign(static_cast<std::size_t>(low), 0);
+  int empty = up_propagate(0);
   if (empty < 0) {
     // Failed literals: a class of few vertices each of which, set true, propagates to a conflict.
     const std::size_t base_queue = queue_.size(), base_reasons = reason_class_.size();
+    const std::size_t base_trail = trail_.size();
     for (int j = 0; j < low && empty < 0; ++j) {
       const int c = count_[static_cast<std::size_t>(j)];
       if (c < 2 || c > kMaxProbeClass) continue;
-      Word* R = rem_.data() + static_cast<std::size_t>(j) * W_;
       int members[kMaxProbeClass], m = 0;
+      const Word* C = classes_.data() + static_cast<std::size_t>(j) * W_;
       for (int x = lo_; x < end_; ++x)
-        for (Word y = R[x]; y; y &= y - 1) members[m++] = x * kBits + lowest_bit(y);
-      saved_.assign(rem_.begin(), rem_.begin() + static_cast<std::ptrdiff_t>(rows) * W_);
-      saved_count_ = count_;
-      saved_heads_ = reason_head_;
-      marks2_.assign(rows, 0);
+        for (Word y = C[x]; y; y &= y - 1) {
+          const int u = x * kBits + lowest_bit(y);
+          if (!removed_[static_cast<std::size_t>(u)]) members[m++] = u;
+        }
+      marks2_.assign(static_cast<std::size_t>(low), 0);
       bool all = true;
       for (int i = 0; i < m && all; ++i) {
-        std::fill(R + lo_, R + end_, Word{0});
-        set_bit(R, members[i]);
-        count_[static_cast<std::size_t>(j)] = 1;
+        for (int o = 0; o < m; ++o)
+          if (o != i) drop(members[o]);
         up_set_unit(j, members[i]);
-        const int e = up_propagate(low, static_cast<int>(base_queue));
+        const int e = up_propagate(static_cast<int>(base_queue));
         if (e >= 0) mark_reasons(e, marks2_);
         all = e >= 0;
         // Undo the probe.
         for (std::size_t k = base_queue; k < queue_.size(); ++k)
           unit_of_[static_cast<std::size_t>(queue_[k])] = -1;
         queue_.resize(base_queue);
+        for (std::size_t e2 = reason_class_.size(); e2-- > base_reasons;)
+          reason_head_[static_cast<std::size_t>(reason_owner_[e2])] = reason_next_[e2];
         reason_class_.resize(base_reasons);
+        reason_owner_.resize(base_reasons);
         reason_next_.resize(base_reasons);
-        reason_head_ = saved_heads_;
-        count_ = saved_count_;
-        std::copy(saved_.begin(), saved_.end(), rem_.begin());
+        undo(base_trail);
       }
       if (all) {
         mark_reasons(j, marks2_);  // and what emptied j down to its probed vertices
@@ -247,11 +295,12 @@ int SatBranchAndBound::filter(int depth, int count, int low) {
   auto& ord = order_[static_cast<std::size_t>(depth)];
   auto& col = colour_[static_cast<std::size_t>(depth)];
   frozen_.assign(static_cast<std::size_t>(low), 0);
+  index_classes(low);
   int kept = 0, failures = 0;
   for (int s = 0; s < count; ++s) {
     const int v = ord[static_cast<std::size_t>(s)];
     if (failures < kMaxFailures) {
-      if (renumber(v, low) || conflict(v, low)) {
+      if (test(v, low)) {
         failures = 0;
         ++absorbed_;
         continue;

@@ -310,10 +310,17 @@ long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
 // when the incumbent is this large.
 constexpr int kCoverIncumbent = 64;
 constexpr double kDenseGraph = 0.5;
-bool hands_off_near_cliques(const BitGraph& g, int incumbent) {
+// On graphs at least this dense auto searches with the MaxSAT bound (bbmcx-sat, sat_bb.hpp): its
+// propagation walks each unit's non-neighbours, so it costs per node what the complement holds.
+// On G(n, p) it breaks even with BBMCX at p = 0.9 and costs 0.3-0.95x above it, 1.6-2.5x at
+// p = 0.7-0.85 (BENCHMARK.md, section 42). Correspondence graphs are far sparser.
+constexpr double kMaxSatDensity = 0.9;
+double density(const BitGraph& g) {
   const double n = g.size();
-  const double density = n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
-  return incumbent >= kCoverIncumbent || density < kDenseGraph;
+  return n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
+}
+bool hands_off_near_cliques(const BitGraph& g, int incumbent) {
+  return incumbent >= kCoverIncumbent || density(g) < kDenseGraph;
 }
 
 template <bool kAuto>
@@ -355,6 +362,11 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         cover.run();
         found = cover.best();
         upper = std::min(upper, cover.upper_bound());
+      } else if (density(g) >= kMaxSatDensity) {
+        detail::SatBranchAndBound bb(sub, incumbent, budget);
+        if (hands_off_near_cliques(g, incumbent)) bb.hand_off_near_cliques(BranchAndBound::kMinCover);
+        bb.run();
+        found = bb.best();
       } else {
         BranchAndBound bb(sub, incumbent, budget, true, true);
         // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus) and
@@ -568,7 +580,8 @@ void register_clique_algorithms() {
          true, run_pruned<false>});
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
-                           "a near-clique (complement density <= 0.25), else BBMCX on it",
+                           "a near-clique (complement density <= 0.25), else BBMCX on it (bbmcx-sat "
+                           "from density 0.9)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",

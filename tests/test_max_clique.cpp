@@ -623,6 +623,24 @@ TEST(MaxSatBound, MatchesBruteForceOnManyRandomGraphsOfVariedDensity) {
   }
 }
 
+TEST(MaxSatBound, AutoOnDenseGraphsMatchesBruteForce) {
+  // auto searches graphs of density >= 0.9 with the MaxSAT bound (cliques/bbmc_variants.cpp).
+  register_clique_algorithms();
+  std::mt19937_64 rng(32006);
+  for (int n : {24, 30, 36}) {
+    for (double density : {0.9, 0.94, 0.97, 0.99}) {
+      for (int rep = 0; rep < 4; ++rep) {
+        const BitGraph g = test::random_graph(n, density, rng);
+        const auto r = CliqueAlgorithms::get("auto").run(g, {});
+        ASSERT_TRUE(r.optimal);
+        ASSERT_TRUE(g.is_clique(r.clique));
+        ASSERT_EQ(static_cast<int>(r.clique.size()), test::brute_force_clique_number(g))
+            << "n=" << n << " density=" << density << " rep=" << rep;
+      }
+    }
+  }
+}
+
 TEST(MaxSatBound, NeverPrunesBelowTheCliqueNumber) {
   // With the incumbent at omega - 1 every bound in the tree must stay >= omega on the way to a
   // maximum clique (one bound below omega would prune it); with omega, nothing is found.

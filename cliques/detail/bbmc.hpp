@@ -98,6 +98,9 @@ class BranchAndBound {
   /// better clique needs) to a CoverSearch (cliques/detail/cover.hpp): there the LP bound of the
   /// complement prunes where colourings cannot.
   void hand_off_near_cliques() { cover_ = true; }
+  /// A node needing fewer than this many more vertices is not handed off (random dense graphs:
+  /// brock200_1 5 s handed off, 0.23 s coloured).
+  static constexpr int kMinCover = 32;
 
   /// The subgraph induced by `vertices` (ascending ids), vertex k of the result being vertices[k].
   /// `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
@@ -151,9 +154,7 @@ class BranchAndBound {
   void consult_helper();
 
   // The hand-off test and the hand-off; near_clique() mirrors CoverSearch's own test for when its
-  // LP bound can prune (below 2 x needed + margin); a node needing fewer than kMinCover more
-  // vertices stays here (random dense graphs: brock200_1 5 s handed off, 0.23 s coloured).
-  static constexpr int kMinCover = 32;
+  // LP bound can prune (below 2 x needed + margin).
   static constexpr int kCoverMargin = 16;
   bool near_clique(const Word* P, int needed) const;
   void search_cover(const Word* P, int size);

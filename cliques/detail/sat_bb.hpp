@@ -21,9 +21,15 @@
 // class. A vertex left in B at colour c keeps the bound min(c, r + its rank in B): the low classes
 // bound A by r, and B's first vertices by their colours or their count.
 //
-// Where unit propagation alone finds no conflict, each low class of two or three vertices left is
-// tested by failed literals (IncMaxCLQ, MoMC): when every one of its vertices, set true on top of
-// the propagation, leads to a conflict, the class with the union of their reasons is inconsistent.
+// Where unit propagation alone finds no conflict, each low class of two vertices left is tested by
+// failed literals (IncMaxCLQ, MoMC): when every one of its vertices, set true on top of the
+// propagation, leads to a conflict, the class with the union of their reasons is inconsistent.
+//
+// Cost: a test keeps a count of the members left per class and a trail of those removed; setting
+// u true walks u's non-neighbours among the low classes (one word scan, then a few bits on dense
+// graphs) instead of intersecting every class with u's row: on MANN_a27 (density 0.99) 5x
+// cheaper (316 -> 62 ms), on C125.9 (0.9) 1.4x; at 0.64-0.75 1.0-1.9x dearer, where BBMCX wins
+// anyway (BENCHMARK.md, section 42).
 #include <vector>
 
 #include "cliques/detail/bbmc.hpp"
@@ -48,16 +54,24 @@ class SatBranchAndBound {
   void expand(int depth);
   int colour(const Word* P, int depth, int kmin);
   int filter(int depth, int count, int low);  // the MaxSAT step; returns |B|
-  bool renumber(int v, int low);
-  bool conflict(int v, int low);  // unit propagation from {v}; freezes the subset found
-  int only_neighbour(const Word* C, const Word* N) const;
+  bool test(int v, int low);  // true when v leaves B (joined, re-numbered or in a conflict)
+  bool conflict(int low);     // unit propagation from the units queued; freezes the subset found
   void search_cover(const Word* P, int size);
 
-  // Unit propagation state over `low` classes plus the singleton {v} (index low).
-  // Sets up the classes with v true; returns true when v fits a class outright (joins it).
-  bool up_reset(int v, int low);
-  // Propagates the queued units from queue position `from`; returns the empty class or -1.
-  int up_propagate(int low, int from);
+  // The node's low classes as the tests see them: each vertex's class, the classes' sizes and
+  // their union A. Set once per node; re-numbering and joining keep them.
+  void index_classes(int low);
+  void join(int v, int k);  // v into class k (a proper colour class after the move)
+  // The MaxSAT state of one test is a count per class of the members still compatible with the
+  // vertices set true, and a trail of the members removed. Removing walks the unit's
+  // non-neighbours in A (a few words and a few bits on dense graphs) rather than every class.
+  void drop(int w);
+  void undo(std::size_t trail_size);
+  int member(int k) const;  // the one member of class k not removed
+  // Re-NUMBER with the test's counts: v has one neighbour u in a class k1, u none in a class k2.
+  bool renumber(int v, int low);
+  // Propagates the queued units from queue position `from`; returns the emptied class or -1.
+  int up_propagate(int from);
   void up_set_unit(int cls, int u);
   void mark_reasons(int cls, std::vector<char>& marks);
 
@@ -70,20 +84,22 @@ class SatBranchAndBound {
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;
   std::vector<std::vector<int>> order_, colour_;
-  std::vector<Word> U_, Q_, classes_;
+  std::vector<Word> U_, Q_, classes_, A_;
   std::vector<char> frozen_;
   int colours_ = 0, coloured_ = 0, lo_ = 0, end_ = 0;  // words [lo_, end_) hold candidates
 
-  // Unit propagation scratch.
-  std::vector<Word> rem_;          // remaining vertices per class (low + 1 rows of W_)
-  std::vector<int> count_;         // |rem| per class
+  std::vector<int> class_of_;      // per vertex of A: its class
+  std::vector<int> size_;          // per class: its members
+  std::vector<int> count_;         // per class: members not removed (-1: frozen)
+  std::vector<char> removed_;      // per vertex
+  std::vector<int> trail_;         // removed vertices, in order
   std::vector<int> unit_of_;       // the class's unit vertex once queued, else -1
   std::vector<int> queue_;         // classes queued as units, in order
   std::vector<int> reason_head_;   // per class: first reason edge (-1 = none)
   std::vector<int> reason_class_;  // per edge: the unit class that removed vertices
+  std::vector<int> reason_owner_;  // per edge: the class it removed them from
   std::vector<int> reason_next_;   // per edge: next edge of the same class
-  std::vector<Word> saved_;        // the rows before a failed-literal probe
-  std::vector<int> saved_count_, saved_heads_, stack_;
+  std::vector<int> tally_, touched_, stack_;
   std::vector<char> marks_, marks2_;
 };
 
