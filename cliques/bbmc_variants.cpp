@@ -13,6 +13,7 @@
 #include "cliques/detail/cover.hpp"
 #include "cliques/detail/sat_bb.hpp"
 #include "cliques/max_clique.hpp"
+#include "core/detail/multiversion.hpp"
 #include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "core/registry.hpp"
@@ -319,9 +320,21 @@ double density(const BitGraph& g) {
   const double n = g.size();
   return n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
 }
-bool hands_off_near_cliques(const BitGraph& g, int incumbent) {
-  return incumbent >= kCoverIncumbent || density(g) < kDenseGraph;
+bool hands_off_near_cliques(double graph_density, int incumbent) {
+  return incumbent >= kCoverIncumbent || graph_density < kDenseGraph;
 }
+
+// On a sparse graph that is no near-clique, auto's BBMCX colours the whole pruned graph at each
+// node, and its classes mix far-apart regions. Past params.decompose_after_words of rows coloured
+// (nodes times the pruned graph's words) it hands the search to the decomposition of bbmc-dec with
+// the MaxSAT bound in each neighbourhood (LMC's scheme), from its incumbent. On the corpus every
+// sparse search BBMCX proves stays under 2.8e7 (k00_198_94 0.3 k10: 71,401 nodes of 391 words,
+// 2.4 s), and the two it does not prove in 30 s (k00_198_94 0.5 k3/k10, omega 120 and 110) are
+// proved in 6.4 and 8.7 s this way; the DIMACS graphs never get there (BENCHMARK.md, section 43).
+
+/// The largest clique above `incumbent` (ids of g) by the decomposition with the MaxSAT bound in
+/// each neighbourhood, or empty; budget.stopped when the budget ran out first.
+std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget);
 
 template <bool kAuto>
 CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& params) {
@@ -355,6 +368,8 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         sub = detail::permuted(g, p.kept, budget.deadline);
       }
       std::vector<int> found;
+      // The whole graph's density, before pruning (one pass over its rows).
+      const double dens = kAuto && sub.size() > incumbent ? density(g) : 0.0;
       if (sub.size() <= incumbent) {
         upper = std::min(upper, incumbent);
       } else if (!kAuto) {
@@ -362,9 +377,11 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         cover.run();
         found = cover.best();
         upper = std::min(upper, cover.upper_bound());
-      } else if (density(g) >= kMaxSatDensity) {
+      } else if (dens >= kMaxSatDensity) {
         detail::SatBranchAndBound bb(sub, incumbent, budget);
-        if (hands_off_near_cliques(g, incumbent)) bb.hand_off_near_cliques(BranchAndBound::kMinCover);
+        if (hands_off_near_cliques(dens, incumbent)) {
+          bb.hand_off_near_cliques(BranchAndBound::kMinCover);
+        }
         bb.run();
         found = bb.best();
       } else {
@@ -372,10 +389,27 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus) and
         // on sparse correspondence graphs; on dense graphs with smaller cliques it costs (C125.9
         // 339 -> 25 ms, p_hat300-3 7.7 -> 0.61 s, gen200_p0.9_55 29 -> 4 ms without it;
-        // BENCHMARK.md, section 28). The density is the whole graph's, before pruning.
-        if (hands_off_near_cliques(g, incumbent)) bb.hand_off_near_cliques();
+        // BENCHMARK.md, section 28).
+        if (hands_off_near_cliques(dens, incumbent)) bb.hand_off_near_cliques();
+        const bool sparse = dens < kDenseGraph && params.decompose_after_words > 0 &&
+                            static_cast<long long>(incumbent) * kNearCliqueRatio < sub.size();
+        const long long own_limit = budget.nodes + params.decompose_after_words / sub.words();
+        const long long user_limit = budget.node_limit;
+        if (sparse && (user_limit == 0 || own_limit < user_limit)) budget.node_limit = own_limit;
         bb.run();
         found = bb.best();
+        if (budget.node_limit != user_limit && budget.stopped &&
+            SteadyClock::now() < budget.deadline) {
+          budget.stopped = false;
+          budget.node_limit = user_limit;
+          const int size = std::max(incumbent, static_cast<int>(found.size()));
+          try {  // a deadline in its set-up keeps BBMCX's clique
+            std::vector<int> better = decompose(sub, size, budget);
+            if (!better.empty()) found = std::move(better);
+          } catch (const DeadlinePassed&) {
+            budget.stopped = true;
+          }
+        }
       }
       if (!found.empty()) {
         p.best.clear();
@@ -385,6 +419,14 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
       budget.stopped = true;
     }
   return finish(std::move(p.best), true, budget, upper);
+}
+
+// |row & mask| over the listed words, with the hardware popcount where the CPU has one.
+VB_MULTIVERSION_POPCNT
+int count_in(const Word* row, const Word* mask, const int* words, int count) {
+  int d = 0;
+  for (int i = 0; i < count; ++i) d += __builtin_popcountll(row[words[i]] & mask[words[i]]);
+  return d;
 }
 
 // bbmc-dec: every maximum clique has a first vertex v in degeneracy order, and its other vertices
@@ -401,11 +443,20 @@ class Decomposition {
   const CoreDecomposition& cores() const { return cd_; }
   int size() const { return h_.size(); }
 
+  /// Per-worker scratch of solve(): a zeroed bitset of h_'s width and two buffers.
+  struct Scratch {
+    explicit Scratch(const BitGraph& g) : mask(static_cast<std::size_t>(g.words()), 0) {}
+    std::vector<Word> mask;
+    std::vector<int> members, words;
+  };
+
   /// A clique through v larger than `size` whose other vertices are v's later neighbours, in
-  /// original ids (the maximum such clique, the first BBMC meets), or empty when there is none.
-  std::vector<int> solve(int v, int size, SearchBudget& budget, std::vector<Word>& mask,
-                         std::vector<int>& members) const {
+  /// original ids (the maximum such clique, the first the search meets), or empty when there is
+  /// none. The search is BBMC, or with `max_sat` the MaxSAT bound of sat_bb.hpp (as LMC does).
+  std::vector<int> solve(int v, int size, SearchBudget& budget, Scratch& s,
+                         bool max_sat = false) const {
     if (core(v) + 1 <= size) return {};  // v's later degree is at most its core number
+    std::vector<int>& members = s.members;
     members.clear();
     const Word* row = h_.row(v);
     for (int w = 0; w <= v / kBits; ++w) {
@@ -416,17 +467,61 @@ class Decomposition {
       }
     }
     if (static_cast<int>(members.size()) + 1 <= size) return {};
-    const BitGraph sub = BranchAndBound::induced(h_, members, mask);
-    BranchAndBound bb(sub, size - 1, budget);
-    bb.run();
-    if (bb.best().empty()) return {};
+    peel(size - 1, s);
+    if (static_cast<int>(members.size()) + 1 <= size) return {};
+    BitGraph sub = BranchAndBound::induced(h_, members, s.mask);
+    // The subgraph is at most the degeneracy: its peel needs no deadline (nor a throw in a worker).
+    std::vector<int> core = k_core_of(sub, size - 1, detail::kNoDeadline);
+    if (static_cast<int>(core.size()) + 1 <= size) return {};
+    if (core.size() < members.size()) {
+      std::size_t kept = 0;
+      for (int k : core) members[kept++] = members[static_cast<std::size_t>(k)];
+      members.resize(kept);
+      sub = BranchAndBound::induced(h_, members, s.mask);
+    }
+    std::vector<int> found;
+    if (max_sat) {
+      detail::SatBranchAndBound bb(sub, size - 1, budget);
+      bb.run();
+      found = bb.best();
+    } else {
+      BranchAndBound bb(sub, size - 1, budget);
+      bb.run();
+      found = bb.best();
+    }
+    if (found.empty()) return {};
     std::vector<int> clique{order_[static_cast<std::size_t>(v)]};
-    for (int k : bb.best())
+    for (int k : found)
       clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
     return clique;
   }
 
  private:
+  // Drops the members with fewer than k neighbours among the members (a clique of k + 1 members
+  // has k in each; LMC's reduction, Jiang, Li & Manya, ECAI 2016), in one pass over h_'s rows and
+  // a bitset of the members, before the subgraph is built; solve() then peels the subgraph to its
+  // k-core. On the sparse negatives of the corpus (n 23,000-25,000, omega 110-120) about one
+  // subproblem in ten survives (2,400 of 23,000 at a clique of 110): 13.8 -> 11.1 s for bbmc-dec.
+  void peel(int k, Scratch& s) const {
+    s.words.clear();
+    for (int u : s.members) {
+      const int w = u / kBits;
+      if (s.mask[static_cast<std::size_t>(w)] == 0) s.words.push_back(w);
+      s.mask[static_cast<std::size_t>(w)] |= Word{1} << (u % kBits);
+    }
+    for (int u : s.members) {
+      const int d = count_in(h_.row(u), s.mask.data(), s.words.data(),
+                             static_cast<int>(s.words.size()));
+      if (d < k) s.mask[static_cast<std::size_t>(u / kBits)] &= ~(Word{1} << (u % kBits));
+    }
+    std::size_t kept = 0;
+    for (int u : s.members) {
+      if ((s.mask[static_cast<std::size_t>(u / kBits)] >> (u % kBits)) & 1) s.members[kept++] = u;
+    }
+    s.members.resize(kept);
+    for (int w : s.words) s.mask[static_cast<std::size_t>(w)] = 0;
+  }
+
   int core(int relabelled) const {
     return cd_.core[static_cast<std::size_t>(order_[static_cast<std::size_t>(relabelled)])];
   }
@@ -434,6 +529,18 @@ class Decomposition {
   std::vector<int> order_;
   BitGraph h_;
 };
+
+std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget) {
+  const Decomposition dec(g, budget.deadline);
+  Decomposition::Scratch scratch(g);
+  std::vector<int> best;
+  for (int v = 0; v < dec.size() && !budget.stopped; ++v) {
+    const int size = std::max(incumbent, static_cast<int>(best.size()));
+    std::vector<int> found = dec.solve(v, size, budget, scratch, true);
+    if (!found.empty()) best = std::move(found);
+  }
+  return best;
+}
 
 // Parallel over vertices with a shared incumbent size, then a canonical answer so that the clique
 // does not depend on the thread count: the first vertex (in min-width order) through which a
@@ -462,11 +569,10 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
   phase.deadline = deadline;
   std::vector<SearchBudget> budgets(static_cast<std::size_t>(threads), phase);
   auto worker = [&](SearchBudget& budget) {
-    std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
-    std::vector<int> members;
+    Decomposition::Scratch scratch(g);
     for (int v; !stop && (v = next++) < n && best_size.load() < upper;) {
       const int size = best_size.load();
-      std::vector<int> found = dec.solve(v, size, budget, mask, members);
+      std::vector<int> found = dec.solve(v, size, budget, scratch);
       if (budget.stopped) {
         stop = true;
         return;
@@ -488,12 +594,11 @@ CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) 
   total.stopped = stop;
   if (!stop && first < n) {
     const int omega = static_cast<int>(best.size());
-    std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
-    std::vector<int> members;
+    Decomposition::Scratch scratch(g);
     SearchBudget canonical = phase;
     for (int v = 0; v <= first; ++v) {
       if (proven[static_cast<std::size_t>(v)] < omega) continue;  // no omega-clique through v
-      std::vector<int> found = dec.solve(v, omega - 1, canonical, mask, members);
+      std::vector<int> found = dec.solve(v, omega - 1, canonical, scratch);
       if (!found.empty()) {
         best = std::move(found);
         break;
@@ -571,7 +676,8 @@ void register_clique_algorithms() {
          true, run_bbmc_kcore});
     CliqueAlgorithms::add(
         {"bbmc-dec",
-         "BBMC on each vertex's later neighbours in degeneracy order (PMC-style decomposition)",
+         "BBMC on each vertex's later neighbours in degeneracy order, peeled to their k-core "
+         "(PMC-style decomposition)",
          true, run_bbmc_dec});
     CliqueAlgorithms::add(
         {"cover",
@@ -581,7 +687,8 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it (bbmcx-sat "
-                           "from density 0.9)",
+                           "from density 0.9; a long sparse search goes on in bbmc-dec's "
+                           "neighbourhoods with the MaxSAT bound)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",

@@ -33,6 +33,10 @@ struct CliqueSearchParams {
   int threads =
       1;  ///< bbmc-dec: worker threads (0 = all cores); the clique is the same for any count
   std::uint64_t seed = 1;  ///< bbmcx-ls: the local search's random stream
+  /// auto, on a sparse graph that is no near-clique: the row words BBMCX may colour (nodes times
+  /// the pruned graph's words, about 3 s on a 2-core VM) before it hands the search to the
+  /// decomposition with the MaxSAT bound; 0 = never (cliques/bbmc_variants.cpp).
+  long long decompose_after_words = 40'000'000;
 };
 
 struct CliqueSearchResult {

@@ -641,6 +641,32 @@ TEST(MaxSatBound, AutoOnDenseGraphsMatchesBruteForce) {
   }
 }
 
+TEST(MaxSatBound, AutoHandsLongSparseSearchesToTheDecomposition) {
+  // On sparse graphs that are no near-clique, auto's BBMCX hands the search to the decomposition
+  // with the MaxSAT bound after decompose_after_words rows coloured (cliques/bbmc_variants.cpp):
+  // here after 20 nodes of these 2-word graphs, so more nodes mean it did; both ways must meet
+  // the brute-force clique number.
+  register_clique_algorithms();
+  CliqueSearchParams params;
+  params.decompose_after_words = 40;
+  std::mt19937_64 rng(32007);
+  int handed = 0, graphs = 0;
+  for (int n : {60, 80, 100}) {
+    for (double density : {0.2, 0.3, 0.4, 0.48}) {
+      for (int rep = 0; rep < 4; ++rep, ++graphs) {
+        const BitGraph g = test::random_graph(n, density, rng);
+        const auto r = CliqueAlgorithms::get("auto").run(g, params);
+        ASSERT_TRUE(r.optimal);
+        ASSERT_TRUE(g.is_clique(r.clique));
+        ASSERT_EQ(static_cast<int>(r.clique.size()), test::brute_force_clique_number(g))
+            << "n=" << n << " density=" << density << " rep=" << rep;
+        handed += r.nodes > 20;
+      }
+    }
+  }
+  EXPECT_GE(handed, graphs / 4) << "the hand-off was not exercised";
+}
+
 TEST(MaxSatBound, NeverPrunesBelowTheCliqueNumber) {
   // With the incumbent at omega - 1 every bound in the tree must stay >= omega on the way to a
   // maximum clique (one bound below omega would prune it); with omega, nothing is found.
