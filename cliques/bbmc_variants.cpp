@@ -342,6 +342,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
   Pruned p = prune_by_greedy(g, budget);
   int upper = p.upper;
   int incumbent = static_cast<int>(p.best.size());
+  long long ls_steps = 0;  // the local search's, up front or interleaved
   // Past the deadline, set-up steps throw DeadlinePassed: the incumbent is kept, status time_limit.
   if (!budget.stopped && static_cast<int>(p.kept.size()) > incumbent && incumbent < upper) try {
       BitGraph sub = detail::permuted(g, p.kept, budget.deadline);
@@ -351,11 +352,14 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
       ls.max_steps = local_steps(incumbent);
       ls.seed = derive_seed(params.seed, {kLocalSearchStream});
       ls.time_limit_s = seconds_until(budget.deadline);
-      // Only where the pruned graph is a near-clique (a sparse graph's small cliques are found by
-      // the search at once, and there each step would cost a scan of thousands of non-neighbours).
+      // The whole graph's density, before pruning (one pass over its rows).
+      const double dens = kAuto ? density(g) : 0.0;
+      // Only where the pruned graph is a near-clique: a sparse graph's small cliques are found by
+      // the search at once, and there each step would cost a scan of thousands of non-neighbours.
+      const bool near_clique = static_cast<long long>(incumbent) * kNearCliqueRatio >= sub.size();
       std::vector<int> local;
-      if (static_cast<long long>(incumbent) * kNearCliqueRatio >= sub.size()) {
-        local = local_search_clique(sub, ls);
+      if (near_clique) {
+        local = local_search_clique(sub, ls, &ls_steps);
       }
       if (static_cast<int>(local.size()) > incumbent) {
         p.best.clear();
@@ -368,8 +372,6 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         sub = detail::permuted(g, p.kept, budget.deadline);
       }
       std::vector<int> found;
-      // The whole graph's density, before pruning (one pass over its rows).
-      const double dens = kAuto && sub.size() > incumbent ? density(g) : 0.0;
       if (sub.size() <= incumbent) {
         upper = std::min(upper, incumbent);
       } else if (!kAuto) {
@@ -389,8 +391,21 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus) and
         // on sparse correspondence graphs; on dense graphs with smaller cliques it costs (C125.9
         // 339 -> 25 ms, p_hat300-3 7.7 -> 0.61 s, gen200_p0.9_55 29 -> 4 ms without it;
-        // BENCHMARK.md, section 28).
+        // BENCHMARK.md, section 28). The density is the whole graph's, before pruning.
         if (hands_off_near_cliques(dens, incumbent)) bb.hand_off_near_cliques();
+        // On dense graphs the greedy starts miss the optimum more often and a tighter incumbent
+        // prunes the proof, but 4,000 local steps up front (about 2 ms) would cost more than the
+        // whole search of a small graph: bbmcx-ls's interleaved local search there instead, a
+        // tenth of the search's work (p_hat300-3 509 -> 198 ms, brock400_4 21.6 -> 7.1 s;
+        // BENCHMARK.md, section 44).
+        std::unique_ptr<LocalSearch> helper;
+        if (!near_clique && dens >= kDenseGraph) {
+          LocalSearchParams interleaved = ls;
+          interleaved.max_steps = LocalSearchParams{}.max_steps;
+          interleaved.target = upper;
+          helper = std::make_unique<LocalSearch>(sub, interleaved);
+          bb.interleave(helper.get(), kLocalInitialVisitsPerVertex * sub.size(), kLocalShare);
+        }
         const bool sparse = dens < kDenseGraph && params.decompose_after_words > 0 &&
                             static_cast<long long>(incumbent) * kNearCliqueRatio < sub.size();
         const long long own_limit = budget.nodes + params.decompose_after_words / sub.words();
@@ -398,6 +413,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         if (sparse && (user_limit == 0 || own_limit < user_limit)) budget.node_limit = own_limit;
         bb.run();
         found = bb.best();
+        if (helper) ls_steps += helper->steps();
         if (budget.node_limit != user_limit && budget.stopped &&
             SteadyClock::now() < budget.deadline) {
           budget.stopped = false;
@@ -418,7 +434,9 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
     } catch (const DeadlinePassed&) {
       budget.stopped = true;
     }
-  return finish(std::move(p.best), true, budget, upper);
+  CliqueSearchResult r = finish(std::move(p.best), true, budget, upper);
+  r.local_search_steps = ls_steps;
+  return r;
 }
 
 // |row & mask| over the listed words, with the hardware popcount where the CPU has one.
@@ -687,8 +705,9 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it (bbmcx-sat "
-                           "from density 0.9; a long sparse search goes on in bbmc-dec's "
-                           "neighbourhoods with the MaxSAT bound)",
+                           "from density 0.9, with bbmcx-ls's local search interleaved from 0.5; "
+                           "a long sparse search goes on in bbmc-dec's neighbourhoods with the "
+                           "MaxSAT bound)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",

@@ -45,7 +45,7 @@ struct CliqueSearchResult {
   bool stopped = false;     ///< the time or node limit cut the search short
   long long nodes = 0;      ///< branch-and-bound nodes expanded
   int upper_bound = 0;  ///< a proven upper bound on the clique number (its size when optimal)
-  long long local_search_steps = 0;  ///< bbmcx-ls: steps of the interleaved local search
+  long long local_search_steps = 0;  ///< bbmcx-ls, auto: steps of the local search
 };
 
 using CliqueAlgorithm =

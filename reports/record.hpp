@@ -95,7 +95,7 @@ struct CliqueRecord {
   double time_ms = 0;              ///< the search (the graph is read once, before, untimed)
   long long nodes = 0;
   int upper_bound = 0;
-  long long local_search_steps = 0;  ///< bbmcx-ls: steps of its interleaved local search
+  long long local_search_steps = 0;  ///< bbmcx-ls, auto: steps of their local search
   std::vector<int> clique;  ///< 1-based DIMACS ids, ascending
 };
 

@@ -667,6 +667,31 @@ TEST(MaxSatBound, AutoHandsLongSparseSearchesToTheDecomposition) {
   EXPECT_GE(handed, graphs / 4) << "the hand-off was not exercised";
 }
 
+TEST(MaxSatBound, AutoInterleavesTheLocalSearchOnDenseGraphsThatAreNoNearClique) {
+  // Density 0.5-0.85 with the clique far under an eighth of the graph: auto's BBMCX runs the local
+  // search interleaved (cliques/bbmc_variants.cpp). Too large for the brute force: the oracle is
+  // plain BBMC (itself checked against the brute force above), and cliquer where it is built.
+  register_clique_algorithms();
+  std::mt19937_64 rng(32008);
+  int interleaved = 0;
+  for (int n : {120, 150}) {
+    for (double density : {0.5, 0.6, 0.7, 0.75}) {
+      const BitGraph g = test::random_graph(n, density, rng);
+      const auto r = CliqueAlgorithms::get("auto").run(g, {});
+      const auto oracle = CliqueAlgorithms::get("bbmc").run(g, {});
+      ASSERT_TRUE(r.optimal && oracle.optimal);
+      ASSERT_TRUE(g.is_clique(r.clique));
+      ASSERT_EQ(r.clique.size(), oracle.clique.size()) << "n=" << n << " density=" << density;
+      if (VB_BUILT_CLIQUER) {
+        const auto peer = CliqueAlgorithms::get("cliquer").run(g, {});
+        ASSERT_EQ(r.clique.size(), peer.clique.size()) << "n=" << n << " density=" << density;
+      }
+      interleaved += r.local_search_steps > 0;
+    }
+  }
+  EXPECT_GE(interleaved, 6) << "the interleaved local search was not exercised";
+}
+
 TEST(MaxSatBound, NeverPrunesBelowTheCliqueNumber) {
   // With the incumbent at omega - 1 every bound in the tree must stay >= omega on the way to a
   // maximum clique (one bound below omega would prune it); with omega, nothing is found.
