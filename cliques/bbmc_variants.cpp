@@ -1,26 +1,24 @@
 // Core decomposition, the greedy lower bound and the exact clique algorithms of max_clique.hpp.
 #include <algorithm>
-#include <atomic>
-#include <limits>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 
 #include "cliques/detail/bbmc.hpp"
 #include "cliques/detail/cover.hpp"
+#include "cliques/detail/decomposition.hpp"
 #include "cliques/detail/sat_bb.hpp"
 #include "cliques/max_clique.hpp"
-#include "core/detail/multiversion.hpp"
-#include "core/parallel.hpp"
 #include "core/random.hpp"
 #include "core/registry.hpp"
 
 namespace verifybench {
 
 using detail::BranchAndBound;
+using detail::decompose;
+using detail::k_core_of;
+using detail::max_core;
+using detail::run_bbmc_dec;
 using detail::finish;
 using detail::for_each_bit;
 using detail::kBits;
@@ -165,9 +163,6 @@ constexpr long long kLocalInitialVisitsPerVertex = 100;
 constexpr double kLocalShare = 0.1;
 constexpr std::uint64_t kLocalSearchStream = 0x15;
 
-int max_core(const CoreDecomposition& cd) {
-  return cd.core.empty() ? -1 : *std::max_element(cd.core.begin(), cd.core.end());
-}
 
 /// BBMC on the subgraph induced by `vertices` (in that order, which is the initial colouring
 /// order); returns a clique larger than `incumbent` in original ids, or an empty vector.
@@ -271,36 +266,6 @@ Pruned prune_by_greedy(const BitGraph& g, SearchBudget& budget) {
   return p;
 }
 
-/// The vertices of `g` left after peeling, again and again, those of degree below k (ascending).
-std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point deadline) {
-  const int n = g.size(), W = g.words();
-  std::vector<int> deg(static_cast<std::size_t>(n)), stack;
-  std::vector<Word> alive(static_cast<std::size_t>(W), 0);
-  for (int v = 0; v < n; ++v) {
-    alive[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
-    if ((deg[static_cast<std::size_t>(v)] = g.degree(v)) < k) stack.push_back(v);
-  }
-  for (int v : stack) alive[static_cast<std::size_t>(v / kBits)] &= ~(Word{1} << (v % kBits));
-  while (!stack.empty()) {
-    const int v = stack.back();
-    stack.pop_back();
-    const Word* row = g.row(v);
-    for (int w = 0; w < W; ++w) {
-      for (Word x = row[w] & alive[static_cast<std::size_t>(w)]; x; x &= x - 1) {
-        const int u = w * kBits + detail::lowest_bit(x);
-        if (--deg[static_cast<std::size_t>(u)] < k) {
-          alive[static_cast<std::size_t>(w)] &= ~(Word{1} << (u % kBits));
-          stack.push_back(u);
-        }
-      }
-    }
-    if ((stack.size() & 255) == 0) throw_if_past(deadline);
-  }
-  std::vector<int> kept;
-  for_each_bit(alive.data(), W, [&](int v) { kept.push_back(v); });
-  return kept;
-}
-
 // The local search on the pruned graph: a base plus twice the greedy clique (it adds one vertex a
 // step, so it needs more steps than the clique it is to reach has vertices).
 constexpr long long kLocalBaseSteps = 4000;
@@ -331,10 +296,6 @@ bool hands_off_near_cliques(double graph_density, int incumbent) {
 // sparse search BBMCX proves stays under 2.8e7 (k00_198_94 0.3 k10: 71,401 nodes of 391 words,
 // 2.4 s), and the two it does not prove in 30 s (k00_198_94 0.5 k3/k10, omega 120 and 110) are
 // proved in 6.4 and 8.7 s this way; the DIMACS graphs never get there (BENCHMARK.md, section 43).
-
-/// The largest clique above `incumbent` (ids of g) by the decomposition with the MaxSAT bound in
-/// each neighbourhood, or empty; budget.stopped when the budget ran out first.
-std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget);
 
 template <bool kAuto>
 CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& params) {
@@ -437,195 +398,6 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
   CliqueSearchResult r = finish(std::move(p.best), true, budget, upper);
   r.local_search_steps = ls_steps;
   return r;
-}
-
-// |row & mask| over the listed words, with the hardware popcount where the CPU has one.
-VB_MULTIVERSION_POPCNT
-int count_in(const Word* row, const Word* mask, const int* words, int count) {
-  int d = 0;
-  for (int i = 0; i < count; ++i) d += __builtin_popcountll(row[words[i]] & mask[words[i]]);
-  return d;
-}
-
-// bbmc-dec: every maximum clique has a first vertex v in degeneracy order, and its other vertices
-// are later neighbours of v: at most degeneracy of them. Solving each such neighbourhood as a small
-// compact BBMC problem, highest core first, is what PMC does (with a weaker bound inside).
-class Decomposition {
- public:
-  Decomposition(const BitGraph& g, SteadyClock::time_point deadline)
-      : cd_(detail::core_decomposition(g, deadline)),
-        order_(cd_.order.rbegin(), cd_.order.rend()),
-        // Relabel in min-width order (0 = removed last): v's later neighbours are the smaller ids.
-        h_(detail::permuted(g, order_, deadline)) {}
-
-  const CoreDecomposition& cores() const { return cd_; }
-  int size() const { return h_.size(); }
-
-  /// Per-worker scratch of solve(): a zeroed bitset of h_'s width and two buffers.
-  struct Scratch {
-    explicit Scratch(const BitGraph& g) : mask(static_cast<std::size_t>(g.words()), 0) {}
-    std::vector<Word> mask;
-    std::vector<int> members, words;
-  };
-
-  /// A clique through v larger than `size` whose other vertices are v's later neighbours, in
-  /// original ids (the maximum such clique, the first the search meets), or empty when there is
-  /// none. The search is BBMC, or with `max_sat` the MaxSAT bound of sat_bb.hpp (as LMC does).
-  std::vector<int> solve(int v, int size, SearchBudget& budget, Scratch& s,
-                         bool max_sat = false) const {
-    if (core(v) + 1 <= size) return {};  // v's later degree is at most its core number
-    std::vector<int>& members = s.members;
-    members.clear();
-    const Word* row = h_.row(v);
-    for (int w = 0; w <= v / kBits; ++w) {
-      for (Word x = row[w]; x; x &= x - 1) {
-        const int u = w * kBits + detail::lowest_bit(x);
-        if (u >= v) break;
-        if (core(u) >= size) members.push_back(u);
-      }
-    }
-    if (static_cast<int>(members.size()) + 1 <= size) return {};
-    peel(size - 1, s);
-    if (static_cast<int>(members.size()) + 1 <= size) return {};
-    BitGraph sub = BranchAndBound::induced(h_, members, s.mask);
-    // The subgraph is at most the degeneracy: its peel needs no deadline (nor a throw in a worker).
-    std::vector<int> core = k_core_of(sub, size - 1, detail::kNoDeadline);
-    if (static_cast<int>(core.size()) + 1 <= size) return {};
-    if (core.size() < members.size()) {
-      std::size_t kept = 0;
-      for (int k : core) members[kept++] = members[static_cast<std::size_t>(k)];
-      members.resize(kept);
-      sub = BranchAndBound::induced(h_, members, s.mask);
-    }
-    std::vector<int> found;
-    if (max_sat) {
-      detail::SatBranchAndBound bb(sub, size - 1, budget);
-      bb.run();
-      found = bb.best();
-    } else {
-      BranchAndBound bb(sub, size - 1, budget);
-      bb.run();
-      found = bb.best();
-    }
-    if (found.empty()) return {};
-    std::vector<int> clique{order_[static_cast<std::size_t>(v)]};
-    for (int k : found)
-      clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
-    return clique;
-  }
-
- private:
-  // Drops the members with fewer than k neighbours among the members (a clique of k + 1 members
-  // has k in each; LMC's reduction, Jiang, Li & Manya, ECAI 2016), in one pass over h_'s rows and
-  // a bitset of the members, before the subgraph is built; solve() then peels the subgraph to its
-  // k-core. On the sparse negatives of the corpus (n 23,000-25,000, omega 110-120) about one
-  // subproblem in ten survives (2,400 of 23,000 at a clique of 110): 13.8 -> 11.1 s for bbmc-dec.
-  void peel(int k, Scratch& s) const {
-    s.words.clear();
-    for (int u : s.members) {
-      const int w = u / kBits;
-      if (s.mask[static_cast<std::size_t>(w)] == 0) s.words.push_back(w);
-      s.mask[static_cast<std::size_t>(w)] |= Word{1} << (u % kBits);
-    }
-    for (int u : s.members) {
-      const int d = count_in(h_.row(u), s.mask.data(), s.words.data(),
-                             static_cast<int>(s.words.size()));
-      if (d < k) s.mask[static_cast<std::size_t>(u / kBits)] &= ~(Word{1} << (u % kBits));
-    }
-    std::size_t kept = 0;
-    for (int u : s.members) {
-      if ((s.mask[static_cast<std::size_t>(u / kBits)] >> (u % kBits)) & 1) s.members[kept++] = u;
-    }
-    s.members.resize(kept);
-    for (int w : s.words) s.mask[static_cast<std::size_t>(w)] = 0;
-  }
-
-  int core(int relabelled) const {
-    return cd_.core[static_cast<std::size_t>(order_[static_cast<std::size_t>(relabelled)])];
-  }
-  CoreDecomposition cd_;
-  std::vector<int> order_;
-  BitGraph h_;
-};
-
-std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget) {
-  const Decomposition dec(g, budget.deadline);
-  Decomposition::Scratch scratch(g);
-  std::vector<int> best;
-  for (int v = 0; v < dec.size() && !budget.stopped; ++v) {
-    const int size = std::max(incumbent, static_cast<int>(best.size()));
-    std::vector<int> found = dec.solve(v, size, budget, scratch, true);
-    if (!found.empty()) best = std::move(found);
-  }
-  return best;
-}
-
-// Parallel over vertices with a shared incumbent size, then a canonical answer so that the clique
-// does not depend on the thread count: the first vertex (in min-width order) through which a
-// maximum clique runs, and the first maximum clique BBMC meets there with incumbent omega - 1.
-// Phase 1 records, per vertex, the size it proved no larger clique through it exceeds, so the
-// canonical pass re-solves only vertices that phase 1 could not rule out (with one thread: one).
-CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p) {
-  const SteadyClock::time_point deadline = deadline_after(p.time_limit_s);
-  const Decomposition dec(g, deadline);
-  const int n = dec.size();
-  const int upper = max_core(dec.cores()) + 1;
-  SearchBudget greedy_budget;
-  std::vector<int> best = detail::greedy_clique(g, dec.cores(), deadline, greedy_budget.stopped);
-  if (greedy_budget.stopped) return finish(std::move(best), true, greedy_budget, upper);
-  const int threads = resolve_threads(p.threads);
-
-  std::atomic<int> next{0}, best_size{static_cast<int>(best.size())};
-  std::atomic<bool> stop{false};
-  std::mutex lock;
-  int first = n;  // smallest vertex through which phase 1 met a clique of the current best size
-  std::vector<int> proven(static_cast<std::size_t>(n), std::numeric_limits<int>::max());
-  // Every budget keeps the deadline taken before the set-up: make_budget(p) here would restart the
-  // clock after the greedy starts (on a 4,500-vertex near-clique they took 14 s of a 20 s limit,
-  // and the search then ran 20 s more).
-  SearchBudget phase = make_budget(p);
-  phase.deadline = deadline;
-  std::vector<SearchBudget> budgets(static_cast<std::size_t>(threads), phase);
-  auto worker = [&](SearchBudget& budget) {
-    Decomposition::Scratch scratch(g);
-    for (int v; !stop && (v = next++) < n && best_size.load() < upper;) {
-      const int size = best_size.load();
-      std::vector<int> found = dec.solve(v, size, budget, scratch);
-      if (budget.stopped) {
-        stop = true;
-        return;
-      }
-      proven[static_cast<std::size_t>(v)] = found.empty() ? size : static_cast<int>(found.size());
-      if (found.empty()) continue;
-      std::lock_guard<std::mutex> guard(lock);
-      if (found.size() > best.size() || (found.size() == best.size() && v < first)) {
-        first = v;
-        best = std::move(found);
-        best_size = static_cast<int>(best.size());
-      }
-    }
-  };
-  WorkerPool(threads).parallel_for(threads,
-                                   [&](int t) { worker(budgets[static_cast<std::size_t>(t)]); });
-  SearchBudget total = budgets[0];
-  for (std::size_t t = 1; t < budgets.size(); ++t) total.nodes += budgets[t].nodes;
-  total.stopped = stop;
-  if (!stop && first < n) {
-    const int omega = static_cast<int>(best.size());
-    Decomposition::Scratch scratch(g);
-    SearchBudget canonical = phase;
-    for (int v = 0; v <= first; ++v) {
-      if (proven[static_cast<std::size_t>(v)] < omega) continue;  // no omega-clique through v
-      std::vector<int> found = dec.solve(v, omega - 1, canonical, scratch);
-      if (!found.empty()) {
-        best = std::move(found);
-        break;
-      }
-    }
-    total.nodes += canonical.nodes;
-    total.stopped = canonical.stopped;
-  }
-  return finish(std::move(best), true, total, upper);
 }
 
 CliqueSearchResult run_greedy(const BitGraph& g, const CliqueSearchParams& p) {

@@ -1,0 +1,27 @@
+// The degeneracy decomposition: bbmc-dec, and auto's hand-off of long sparse searches
+// (cliques/decomposition.cpp).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+#include "cliques/detail/bbmc.hpp"
+#include "cliques/max_clique.hpp"
+
+namespace verifybench::detail {
+
+inline int max_core(const CoreDecomposition& cd) {
+  return cd.core.empty() ? -1 : *std::max_element(cd.core.begin(), cd.core.end());
+}
+
+/// The vertices of `g` left after peeling, again and again, those of degree below k (ascending).
+std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point deadline);
+
+/// The largest clique above `incumbent` (ids of g) by the decomposition with the MaxSAT bound in
+/// each neighbourhood, or empty; budget.stopped when the budget ran out first.
+std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget);
+
+/// bbmc-dec: BBMC on each vertex's later neighbours in degeneracy order (PMC's scheme).
+CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p);
+
+}  // namespace verifybench::detail
