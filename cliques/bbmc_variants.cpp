@@ -375,10 +375,12 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         bb.run();
         found = bb.best();
         if (helper) ls_steps += helper->steps();
-        if (budget.node_limit != user_limit && budget.stopped &&
-            SteadyClock::now() < budget.deadline) {
+        // Stopped by its own limit (not the caller's, nor the deadline): the decomposition goes on.
+        const bool hand_over = budget.node_limit != user_limit && budget.stopped &&
+                               SteadyClock::now() < budget.deadline;
+        budget.node_limit = user_limit;
+        if (hand_over) {
           budget.stopped = false;
-          budget.node_limit = user_limit;
           const int size = std::max(incumbent, static_cast<int>(found.size()));
           try {  // a deadline in its set-up keeps BBMCX's clique
             std::vector<int> better = decompose(sub, size, budget);
