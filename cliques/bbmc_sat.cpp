@@ -1,5 +1,5 @@
 // bbmcx-sat's search (cliques/detail/sat_bb.hpp): greedy colouring, Re-NUMBER, and the
-// incremental MaxSAT test (unit propagation and failed literals over the colour classes) that
+// incremental MaxSAT test (unit propagation over the colour classes) that
 // takes branching vertices out of B.
 #include <algorithm>
 
@@ -15,8 +15,6 @@ constexpr long long kMaxSatWords = 4096;
 // After this many vertices in a row that stay in B, the rest stay too (a large clique past the
 // bound never propagates to a conflict).
 constexpr int kMaxFailures = 16;
-// Failed literals are tried on low classes of at most this many remaining vertices.
-constexpr int kMaxProbeClass = 2;
 // Nodes with more branching vertices than this skip the test: each costs a pass over the low
 // classes, and a few vertices fewer among many children saves little (p_hat300-3: 1.16 -> 1.01 s).
 constexpr int kMaxBranching = 32;
@@ -63,7 +61,6 @@ void SatBranchAndBound::index_classes(int low) {
   const std::size_t n = static_cast<std::size_t>(g_.size());
   if (class_of_.size() < n) {
     class_of_.assign(n, -1);
-    removed_.assign(n, 0);
   }
   A_.assign(static_cast<std::size_t>(W_), 0);
   size_.assign(static_cast<std::size_t>(low), 0);
@@ -77,42 +74,34 @@ void SatBranchAndBound::index_classes(int low) {
       }
     }
   }
+  L_ = A_;
+  R_.assign(static_cast<std::size_t>(W_), 0);
   count_.resize(static_cast<std::size_t>(low));
-  unit_of_.assign(static_cast<std::size_t>(low), -1);
+  unit_of_.assign(static_cast<std::size_t>(low), 0);
   reason_head_.assign(static_cast<std::size_t>(low), -1);
-  tally_.assign(static_cast<std::size_t>(low), 0);
 }
 
 void SatBranchAndBound::join(int v, int k) {
   set_bit(classes_.data() + static_cast<std::size_t>(k) * W_, v);
   set_bit(A_.data(), v);
+  set_bit(L_.data(), v);
   class_of_[static_cast<std::size_t>(v)] = k;
   ++size_[static_cast<std::size_t>(k)];
-}
-
-void SatBranchAndBound::drop(int w) {
-  removed_[static_cast<std::size_t>(w)] = 1;
-  trail_.push_back(w);
-  --count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])];
-}
-
-void SatBranchAndBound::undo(std::size_t trail_size) {
-  while (trail_.size() > trail_size) {
-    const int w = trail_.back();
-    trail_.pop_back();
-    removed_[static_cast<std::size_t>(w)] = 0;
-    ++count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])];
-  }
 }
 
 int SatBranchAndBound::member(int k) const {
   const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
   for (int x = lo_; x < end_; ++x)
-    for (Word y = C[x]; y; y &= y - 1) {
-      const int u = x * kBits + lowest_bit(y);
-      if (!removed_[static_cast<std::size_t>(u)]) return u;
-    }
+    if (const Word y = C[x] & R_[static_cast<std::size_t>(x)]) return x * kBits + lowest_bit(y);
   return -1;
+}
+
+bool SatBranchAndBound::no_neighbour_in(int u, int k) const {
+  const Word* Nu = g_.row(u);
+  const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
+  int x = lo_;
+  while (x < end_ && (C[x] & Nu[x]) == 0) ++x;
+  return x == end_;
 }
 
 bool SatBranchAndBound::renumber(int v, int low) {
@@ -123,24 +112,10 @@ bool SatBranchAndBound::renumber(int v, int low) {
     int u = -1;
     for (int x = lo_; x < end_ && u < 0; ++x)
       if (const Word both = C1[x] & N[x]) u = x * kBits + lowest_bit(both);
-    // A class k2 > k1 where u has no neighbour: all of its members are u's non-neighbours.
-    const Word* Nu = g_.row(u);
-    touched_.clear();
-    for (int x = lo_; x < end_; ++x)
-      for (Word y = A_[static_cast<std::size_t>(x)] & ~Nu[x]; y; y &= y - 1) {
-        const int w = x * kBits + lowest_bit(y);
-        if (w == u) continue;
-        const int k = class_of_[static_cast<std::size_t>(w)];
-        if (tally_[static_cast<std::size_t>(k)]++ == 0) touched_.push_back(k);
-      }
-    int k2 = -1;
-    for (int k : touched_) {
-      if (k > k1 && k > k2 && !frozen_[static_cast<std::size_t>(k)] &&
-          tally_[static_cast<std::size_t>(k)] == size_[static_cast<std::size_t>(k)])
-        k2 = k;
-      tally_[static_cast<std::size_t>(k)] = 0;
-    }
-    if (k2 < 0) continue;
+    // The last unfrozen class k2 > k1 where u has no neighbour.
+    int k2 = low - 1;
+    while (k2 > k1 && (frozen_[static_cast<std::size_t>(k2)] || !no_neighbour_in(u, k2))) --k2;
+    if (k2 == k1) continue;
     clear_bit(C1, u);
     --size_[static_cast<std::size_t>(k1)];
     join(u, k2);
@@ -150,25 +125,27 @@ bool SatBranchAndBound::renumber(int v, int low) {
   return false;
 }
 
-void SatBranchAndBound::up_set_unit(int cls, int u) {
-  unit_of_[static_cast<std::size_t>(cls)] = u;
+void SatBranchAndBound::up_set_unit(int cls) {
+  unit_of_[static_cast<std::size_t>(cls)] = 1;
   queue_.push_back(cls);
 }
 
-int SatBranchAndBound::up_propagate(int from) {
-  for (std::size_t qi = static_cast<std::size_t>(from); qi < queue_.size(); ++qi) {
+int SatBranchAndBound::up_propagate() {
+  for (std::size_t qi = 0; qi < queue_.size(); ++qi) {
     const int q = queue_[qi];
-    const int u = unit_of_[static_cast<std::size_t>(q)];
+    const int u = member(q);  // the class's one member left: it is set true
     const Word* N = g_.row(u);
-    // u true: each of its non-neighbours leaves its class.
-    for (int x = lo_; x < end_; ++x)
-      for (Word y = A_[static_cast<std::size_t>(x)] & ~N[x]; y; y &= y - 1) {
-        const int w = x * kBits + lowest_bit(y);
-        const int j = class_of_[static_cast<std::size_t>(w)];
-        if (j == q || w == u || removed_[static_cast<std::size_t>(w)]) continue;
+    // u true: each of its non-neighbours leaves its class (u stays: a later unit that is not its
+    // neighbour empties q).
+    for (int x = lo_; x < end_; ++x) {
+      Word& R = R_[static_cast<std::size_t>(x)];
+      Word gone = R & ~N[x];
+      if (x == u / kBits) gone &= ~(Word{1} << (u % kBits));
+      R &= ~gone;
+      for (; gone; gone &= gone - 1) {
+        const int j = class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(gone))];
         int& c = count_[static_cast<std::size_t>(j)];
-        if (c <= 0) continue;  // frozen
-        drop(w);
+        --c;
         int& head = reason_head_[static_cast<std::size_t>(j)];
         if (head < 0 || reason_class_[static_cast<std::size_t>(head)] != q) {
           reason_class_.push_back(q);
@@ -177,8 +154,9 @@ int SatBranchAndBound::up_propagate(int from) {
           head = static_cast<int>(reason_class_.size()) - 1;
         }
         if (c == 0) return j;
-        if (c == 1 && unit_of_[static_cast<std::size_t>(j)] < 0) up_set_unit(j, member(j));
+        if (c == 1 && !unit_of_[static_cast<std::size_t>(j)]) up_set_unit(j);
       }
+    }
   }
   return -1;
 }
@@ -208,86 +186,44 @@ bool SatBranchAndBound::test(int v, int low) {
     count_[static_cast<std::size_t>(k)] =
         frozen_[static_cast<std::size_t>(k)] ? -1 : size_[static_cast<std::size_t>(k)];
   const Word* N = g_.row(v);
-  for (int x = lo_; x < end_; ++x)
-    for (Word y = A_[static_cast<std::size_t>(x)] & ~N[x]; y; y &= y - 1) {
-      const int w = x * kBits + lowest_bit(y);
-      if (count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])] > 0) drop(w);
-    }
+  for (int x = lo_; x < end_; ++x) {
+    const Word L = L_[static_cast<std::size_t>(x)];
+    R_[static_cast<std::size_t>(x)] = L & N[x];
+    for (Word y = L & ~N[x]; y; y &= y - 1)
+      --count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(y))])];
+  }
   bool out = false;
   for (int k = 0; k < low && !out; ++k) {
     if (count_[static_cast<std::size_t>(k)] != 0) continue;
-    undo(0);
     join(v, k);  // v fits this class (re-numbering made room)
     out = true;
   }
-  if (!out && renumber(v, low)) {
-    undo(0);
-    out = true;
-  }
+  if (!out && renumber(v, low)) out = true;
   if (!out) {
     for (int k = 0; k < low; ++k)
-      if (count_[static_cast<std::size_t>(k)] == 1) up_set_unit(k, member(k));
+      if (count_[static_cast<std::size_t>(k)] == 1) up_set_unit(k);
     out = conflict(low);
-    for (int k : queue_) unit_of_[static_cast<std::size_t>(k)] = -1;
+    for (int k : queue_) unit_of_[static_cast<std::size_t>(k)] = 0;
     queue_.clear();
     for (int k : reason_owner_) reason_head_[static_cast<std::size_t>(k)] = -1;
     reason_class_.clear();
     reason_owner_.clear();
     reason_next_.clear();
-    undo(0);
   }
   return out;
 }
 
 bool SatBranchAndBound::conflict(int low) {
+  const int empty = up_propagate();
+  if (empty < 0) return false;
   marks_.assign(static_cast<std::size_t>(low), 0);
-  int empty = up_propagate(0);
-  if (empty < 0) {
-    // Failed literals: a class of few vertices each of which, set true, propagates to a conflict.
-    const std::size_t base_queue = queue_.size(), base_reasons = reason_class_.size();
-    const std::size_t base_trail = trail_.size();
-    for (int j = 0; j < low && empty < 0; ++j) {
-      const int c = count_[static_cast<std::size_t>(j)];
-      if (c < 2 || c > kMaxProbeClass) continue;
-      int members[kMaxProbeClass], m = 0;
-      const Word* C = classes_.data() + static_cast<std::size_t>(j) * W_;
-      for (int x = lo_; x < end_; ++x)
-        for (Word y = C[x]; y; y &= y - 1) {
-          const int u = x * kBits + lowest_bit(y);
-          if (!removed_[static_cast<std::size_t>(u)]) members[m++] = u;
-        }
-      marks2_.assign(static_cast<std::size_t>(low), 0);
-      bool all = true;
-      for (int i = 0; i < m && all; ++i) {
-        for (int o = 0; o < m; ++o)
-          if (o != i) drop(members[o]);
-        up_set_unit(j, members[i]);
-        const int e = up_propagate(static_cast<int>(base_queue));
-        if (e >= 0) mark_reasons(e, marks2_);
-        all = e >= 0;
-        // Undo the probe.
-        for (std::size_t k = base_queue; k < queue_.size(); ++k)
-          unit_of_[static_cast<std::size_t>(queue_[k])] = -1;
-        queue_.resize(base_queue);
-        for (std::size_t e2 = reason_class_.size(); e2-- > base_reasons;)
-          reason_head_[static_cast<std::size_t>(reason_owner_[e2])] = reason_next_[e2];
-        reason_class_.resize(base_reasons);
-        reason_owner_.resize(base_reasons);
-        reason_next_.resize(base_reasons);
-        undo(base_trail);
-      }
-      if (all) {
-        mark_reasons(j, marks2_);  // and what emptied j down to its probed vertices
-        marks_ = marks2_;
-        empty = j;
-      }
-    }
-    if (empty < 0) return false;
-  } else {
-    mark_reasons(empty, marks_);
+  mark_reasons(empty, marks_);
+  for (int k = 0; k < low; ++k) {
+    if (!marks_[static_cast<std::size_t>(k)]) continue;
+    frozen_[static_cast<std::size_t>(k)] = 1;  // its members take no part in later tests
+    const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
+    for (int x = lo_; x < end_; ++x) L_[static_cast<std::size_t>(x)] &= ~C[x];
   }
-  for (int k = 0; k < low; ++k)
-    if (marks_[static_cast<std::size_t>(k)]) frozen_[static_cast<std::size_t>(k)] = 1;
   return true;
 }
 

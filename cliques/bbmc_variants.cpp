@@ -278,9 +278,10 @@ constexpr int kCoverIncumbent = 64;
 constexpr double kDenseGraph = 0.5;
 // On graphs at least this dense auto searches with the MaxSAT bound (bbmcx-sat, sat_bb.hpp): its
 // propagation walks each unit's non-neighbours, so it costs per node what the complement holds.
-// On G(n, p) it breaks even with BBMCX at p = 0.9 and costs 0.3-0.95x above it, 1.6-2.5x at
-// p = 0.7-0.85 (BENCHMARK.md, section 42). Correspondence graphs are far sparser.
-constexpr double kMaxSatDensity = 0.9;
+// On G(n, p) at n = 100-200 (near-cliques by auto's measure, so the local search runs up front) it
+// costs 0.66-1.03x what BBMCX does at p = 0.85-0.875 (C125.9, 0.90: 0.63x) and 1.2-1.5x at
+// 0.75-0.8 (BENCHMARK.md, section 45). Correspondence graphs are far sparser.
+constexpr double kMaxSatDensity = 0.85;
 double density(const BitGraph& g) {
   const double n = g.size();
   return n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
@@ -457,7 +458,7 @@ void register_clique_algorithms() {
                            true, run_bbmc<true, true>});
     CliqueAlgorithms::add({"bbmcx-sat",
                            "BBMCR plus the incremental MaxSAT bound of IncMaxCLQ/MoMC (unit "
-                           "propagation and failed literals over the colour classes)",
+                           "propagation over the colour classes)",
                            true, run_bbmcx_sat});
     CliqueAlgorithms::add({"bbmcx-ls",
                            "BBMCX with a DLS-MC local search interleaved for the lower bound", true,
@@ -479,7 +480,7 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it (bbmcx-sat "
-                           "from density 0.9, with bbmcx-ls's local search interleaved from 0.5; "
+                           "from density 0.85, with bbmcx-ls's local search interleaved from 0.5; "
                            "a long sparse search goes on in bbmc-dec's neighbourhoods with the "
                            "MaxSAT bound)",
                            true, run_pruned<true>});

@@ -21,15 +21,15 @@
 // class. A vertex left in B at colour c keeps the bound min(c, r + its rank in B): the low classes
 // bound A by r, and B's first vertices by their colours or their count.
 //
-// Where unit propagation alone finds no conflict, each low class of two vertices left is tested by
-// failed literals (IncMaxCLQ, MoMC): when every one of its vertices, set true on top of the
-// propagation, leads to a conflict, the class with the union of their reasons is inconsistent.
+// Failed literals (IncMaxCLQ and MoMC test the classes of two vertices left where propagation
+// alone finds no conflict) are not tried: on C125.9, p_hat300-3, MANN_a27 and gen200_p0.9_55 they
+// removed under 1% of the nodes at 20-50% more time a node (BENCHMARK.md, section 45).
 //
-// Cost: a test keeps a count of the members left per class and a trail of those removed; setting
-// u true walks u's non-neighbours among the low classes (one word scan, then a few bits on dense
-// graphs) instead of intersecting every class with u's row: on MANN_a27 (density 0.99) 5x
-// cheaper (316 -> 62 ms), on C125.9 (0.9) 1.4x; at 0.64-0.75 1.0-1.9x dearer, where BBMCX wins
-// anyway (BENCHMARK.md, section 42).
+// Cost: a test keeps the members left as a bitset and a count per class; setting u true clears
+// u's non-neighbours a word at a time and walks only those (a few bits on dense graphs) instead
+// of intersecting every class with u's row: on MANN_a27 (density 0.99) 5x cheaper (316 -> 62
+// ms; section 42). Against BBMCX on the same incumbent: 0.66x on C125.9 (0.90), 1.0x on
+// p_hat300-3 (0.74), 1.3-1.4x on brock200_1 and sanr200_0.7 (0.7-0.75) (BENCHMARK.md, section 45).
 #include <vector>
 
 #include "cliques/detail/bbmc.hpp"
@@ -62,17 +62,17 @@ class SatBranchAndBound {
   // their union A. Set once per node; re-numbering and joining keep them.
   void index_classes(int low);
   void join(int v, int k);  // v into class k (a proper colour class after the move)
-  // The MaxSAT state of one test is a count per class of the members still compatible with the
-  // vertices set true, and a trail of the members removed. Removing walks the unit's
-  // non-neighbours in A (a few words and a few bits on dense graphs) rather than every class.
-  void drop(int w);
-  void undo(std::size_t trail_size);
-  int member(int k) const;  // the one member of class k not removed
+  // The MaxSAT state of one test is R, the members of unfrozen classes still compatible with the
+  // vertices set true, and a count per class of them. Setting a unit true clears its
+  // non-neighbours from R a word at a time and walks only those (a few bits a word on dense
+  // graphs); the next test rebuilds R from L, so nothing is undone.
+  int member(int k) const;  // the first member of class k left in R
   // Re-NUMBER with the test's counts: v has one neighbour u in a class k1, u none in a class k2.
   bool renumber(int v, int low);
-  // Propagates the queued units from queue position `from`; returns the emptied class or -1.
-  int up_propagate(int from);
-  void up_set_unit(int cls, int u);
+  bool no_neighbour_in(int u, int k) const;  // no member of low class k is u's neighbour
+  // Propagates the queued units; returns the emptied class or -1.
+  int up_propagate();
+  void up_set_unit(int cls);
   void mark_reasons(int cls, std::vector<char>& marks);
 
   const BitGraph& g_;
@@ -85,22 +85,21 @@ class SatBranchAndBound {
   std::vector<std::vector<Word>> levels_;
   std::vector<std::vector<int>> order_, colour_;
   std::vector<Word> U_, Q_, classes_, A_;
+  std::vector<Word> L_, R_;  // A less the frozen classes; the members left in the current test
   std::vector<char> frozen_;
   int colours_ = 0, coloured_ = 0, lo_ = 0, end_ = 0;  // words [lo_, end_) hold candidates
 
   std::vector<int> class_of_;      // per vertex of A: its class
   std::vector<int> size_;          // per class: its members
-  std::vector<int> count_;         // per class: members not removed (-1: frozen)
-  std::vector<char> removed_;      // per vertex
-  std::vector<int> trail_;         // removed vertices, in order
-  std::vector<int> unit_of_;       // the class's unit vertex once queued, else -1
+  std::vector<int> count_;         // per class: members left in R (-1: frozen)
+  std::vector<char> unit_of_;      // per class: queued as a unit
   std::vector<int> queue_;         // classes queued as units, in order
   std::vector<int> reason_head_;   // per class: first reason edge (-1 = none)
   std::vector<int> reason_class_;  // per edge: the unit class that removed vertices
   std::vector<int> reason_owner_;  // per edge: the class it removed them from
   std::vector<int> reason_next_;   // per edge: next edge of the same class
-  std::vector<int> tally_, touched_, stack_;
-  std::vector<char> marks_, marks2_;
+  std::vector<int> stack_;
+  std::vector<char> marks_;
 };
 
 }  // namespace verifybench::detail
