@@ -15,6 +15,8 @@ constexpr long long kMaxSatWords = 4096;
 // After this many vertices in a row that stay in B, the rest stay too (a large clique past the
 // bound never propagates to a conflict).
 constexpr int kMaxFailures = 16;
+// Failed literals are tried on low classes of at most this many remaining vertices.
+constexpr int kMaxProbeClass = 2;
 // Nodes with more branching vertices than this skip the test: each costs a pass over the low
 // classes, and a few vertices fewer among many children saves little (p_hat300-3: 1.16 -> 1.01 s).
 constexpr int kMaxBranching = 32;
@@ -24,11 +26,13 @@ inline void set_bit(Word* b, int v) { b[v / kBits] |= Word{1} << (v % kBits); }
 inline void clear_bit(Word* b, int v) { b[v / kBits] &= ~(Word{1} << (v % kBits)); }
 }  // namespace
 
-SatBranchAndBound::SatBranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget)
+SatBranchAndBound::SatBranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget,
+                                     SatOptions options)
     : g_(g),
       W_(g.words()),
       best_size_(incumbent),
       budget_(budget),
+      options_(options),
       levels_(static_cast<std::size_t>(g.size()) + 2),
       order_(levels_.size()),
       colour_(levels_.size()),
@@ -106,8 +110,8 @@ bool SatBranchAndBound::no_neighbour_in(int u, int k) const {
 
 bool SatBranchAndBound::renumber(int v, int low) {
   const Word* N = g_.row(v);
-  for (int k1 = 0; k1 < low - 1; ++k1) {
-    if (count_[static_cast<std::size_t>(k1)] != 1) continue;  // v's neighbours there (or frozen)
+  for (int k1 : ones_) {  // the classes where v has one neighbour
+    if (k1 >= low - 1) break;
     Word* C1 = classes_.data() + static_cast<std::size_t>(k1) * W_;
     int u = -1;
     for (int x = lo_; x < end_ && u < 0; ++x)
@@ -130,8 +134,8 @@ void SatBranchAndBound::up_set_unit(int cls) {
   queue_.push_back(cls);
 }
 
-int SatBranchAndBound::up_propagate() {
-  for (std::size_t qi = 0; qi < queue_.size(); ++qi) {
+int SatBranchAndBound::up_propagate(std::size_t from) {
+  for (std::size_t qi = from; qi < queue_.size(); ++qi) {
     const int q = queue_[qi];
     const int u = member(q);  // the class's one member left: it is set true
     const Word* N = g_.row(u);
@@ -189,19 +193,24 @@ bool SatBranchAndBound::test(int v, int low) {
   for (int x = lo_; x < end_; ++x) {
     const Word L = L_[static_cast<std::size_t>(x)];
     R_[static_cast<std::size_t>(x)] = L & N[x];
-    for (Word y = L & ~N[x]; y; y &= y - 1)
-      --count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(y))])];
+    for (Word y = L & ~N[x]; y; y &= y - 1) {
+      const int w = x * kBits + lowest_bit(y);
+      --count_[static_cast<std::size_t>(class_of_[static_cast<std::size_t>(w)])];
+    }
   }
-  bool out = false;
-  for (int k = 0; k < low && !out; ++k) {
-    if (count_[static_cast<std::size_t>(k)] != 0) continue;
-    join(v, k);  // v fits this class (re-numbering made room)
-    out = true;
+  // The classes v empties (v fits the first: re-numbering made room) and those it leaves one.
+  ones_.clear();
+  for (int k = 0; k < low; ++k) {
+    const int c = count_[static_cast<std::size_t>(k)];
+    if (c == 0) {
+      join(v, k);
+      return true;
+    }
+    if (c == 1) ones_.push_back(k);
   }
-  if (!out && renumber(v, low)) out = true;
+  bool out = options_.renumber && renumber(v, low);
   if (!out) {
-    for (int k = 0; k < low; ++k)
-      if (count_[static_cast<std::size_t>(k)] == 1) up_set_unit(k);
+    for (int k : ones_) up_set_unit(k);
     out = conflict(low);
     for (int k : queue_) unit_of_[static_cast<std::size_t>(k)] = 0;
     queue_.clear();
@@ -213,11 +222,57 @@ bool SatBranchAndBound::test(int v, int low) {
   return out;
 }
 
+int SatBranchAndBound::failed_literal(int low) {
+  const std::size_t base_queue = queue_.size(), base_reasons = reason_class_.size();
+  saved_R_.assign(R_.begin(), R_.end());
+  saved_count_.assign(count_.begin(), count_.end());
+  for (int j = 0; j < low; ++j) {
+    const int c = count_[static_cast<std::size_t>(j)];
+    if (c < 2 || c > kMaxProbeClass) continue;
+    int members[kMaxProbeClass], m = 0;
+    const Word* C = classes_.data() + static_cast<std::size_t>(j) * W_;
+    for (int x = lo_; x < end_; ++x)
+      for (Word y = C[x] & R_[static_cast<std::size_t>(x)]; y; y &= y - 1)
+        members[m++] = x * kBits + lowest_bit(y);
+    marks_.assign(static_cast<std::size_t>(low), 0);
+    bool all = true;
+    for (int i = 0; i < m && all; ++i) {
+      // members[i] alone left in class j, set true.
+      for (int o = 0; o < m; ++o)
+        if (o != i) clear_bit(R_.data(), members[o]);
+      count_[static_cast<std::size_t>(j)] = 1;
+      up_set_unit(j);
+      const int e = up_propagate(base_queue);
+      if (e >= 0) mark_reasons(e, marks_);
+      all = e >= 0;
+      // Undo the probe.
+      for (std::size_t k = base_queue; k < queue_.size(); ++k)
+        unit_of_[static_cast<std::size_t>(queue_[k])] = 0;
+      queue_.resize(base_queue);
+      for (std::size_t e2 = reason_class_.size(); e2-- > base_reasons;)
+        reason_head_[static_cast<std::size_t>(reason_owner_[e2])] = reason_next_[e2];
+      reason_class_.resize(base_reasons);
+      reason_owner_.resize(base_reasons);
+      reason_next_.resize(base_reasons);
+      std::copy(saved_R_.begin(), saved_R_.end(), R_.begin());
+      std::copy(saved_count_.begin(), saved_count_.end(), count_.begin());
+    }
+    if (all) {
+      mark_reasons(j, marks_);  // and what emptied j down to its probed vertices
+      return j;
+    }
+  }
+  return -1;
+}
+
 bool SatBranchAndBound::conflict(int low) {
-  const int empty = up_propagate();
-  if (empty < 0) return false;
-  marks_.assign(static_cast<std::size_t>(low), 0);
-  mark_reasons(empty, marks_);
+  int empty = up_propagate(0);
+  if (empty >= 0) {
+    marks_.assign(static_cast<std::size_t>(low), 0);
+    mark_reasons(empty, marks_);
+  } else if (!options_.failed_literals || (empty = failed_literal(low)) < 0) {
+    return false;
+  }
   for (int k = 0; k < low; ++k) {
     if (!marks_[static_cast<std::size_t>(k)]) continue;
     frozen_[static_cast<std::size_t>(k)] = 1;  // its members take no part in later tests
@@ -279,6 +334,7 @@ void SatBranchAndBound::expand(int depth) {
   }
   const int kmin = std::max(1, needed);
   const int count = colour(P, depth, kmin);
+  work_ += static_cast<long long>(coloured_) * W_;
   if (colours_ == coloured_) {  // every class a singleton: P is a clique
     if (size + coloured_ > best_size_) {
       best_ = clique_;

@@ -1,5 +1,6 @@
 // Core decomposition, the greedy lower bound and the exact clique algorithms of max_clique.hpp.
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -282,10 +283,36 @@ constexpr double kDenseGraph = 0.5;
 // costs 0.66-1.03x what BBMCX does at p = 0.85-0.875 (C125.9, 0.90: 0.63x) and 1.2-1.5x at
 // 0.75-0.8 (BENCHMARK.md, section 45). Correspondence graphs are far sparser.
 constexpr double kMaxSatDensity = 0.85;
+// On dense graphs the MaxSAT test goes without Re-NUMBER and failed literals (sat_bb.hpp).
+constexpr detail::SatOptions kDenseSat{false, false};
 double density(const BitGraph& g) {
   const double n = g.size();
   return n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
 }
+// The spread of the degrees against a random graph's of the same density: their standard
+// deviation over that of Binomial(n - 1, density). About 1 on G(n, p) and on DIMACS's random-like
+// families (brock, sanr, san: 0.8-1.0; keller4 1.2; hamming, johnson: 0); 2.4-3.6 where each
+// vertex has its own density, as in the p_hat generator's graphs (p_hat300-3: 3.0).
+double degree_dispersion(const BitGraph& g) {
+  const int n = g.size();
+  if (n < 3) return 0.0;
+  double sum = 0, sq = 0;
+  for (int v = 0; v < n; ++v) {
+    const double d = BitGraph::count(g.row(v), g.words());
+    sum += d;
+    sq += d * d;
+  }
+  const double mean = sum / n, p = mean / (n - 1);
+  const double binomial = (n - 1) * p * (1 - p);
+  return binomial > 0 ? std::sqrt(std::max(0.0, sq / n - mean * mean) / binomial) : 0.0;
+}
+// On a dense graph that is no near-clique and whose degrees are this dispersed, auto searches
+// with the degeneracy decomposition and the MaxSAT bound in each neighbourhood, bbmcx-ls's local
+// search run between the subproblems: the decomposition gives the low-degree vertices small
+// subproblems, which a whole-graph colouring mixes in. p_hat300-3 195 -> 142 ms, graphs of the
+// p_hat generator (n 300-400, density 0.6-0.75) 0.66-0.87x; on G(n, p) and brock200_1, whose
+// degrees are not dispersed, it cost 1.0-1.7x (BENCHMARK.md, section 46).
+constexpr double kDispersed = 2.0;
 bool hands_off_near_cliques(double graph_density, int incumbent) {
   return incumbent >= kCoverIncumbent || graph_density < kDenseGraph;
 }
@@ -342,12 +369,21 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         found = cover.best();
         upper = std::min(upper, cover.upper_bound());
       } else if (dens >= kMaxSatDensity) {
-        detail::SatBranchAndBound bb(sub, incumbent, budget);
+        detail::SatBranchAndBound bb(sub, incumbent, budget, kDenseSat);
         if (hands_off_near_cliques(dens, incumbent)) {
           bb.hand_off_near_cliques(BranchAndBound::kMinCover);
         }
         bb.run();
         found = bb.best();
+      } else if (!near_clique && dens >= kDenseGraph && degree_dispersion(g) >= kDispersed) {
+        LocalSearchParams interleaved = ls;
+        interleaved.max_steps = LocalSearchParams{}.max_steps;
+        interleaved.target = upper;
+        LocalSearch helper(sub, interleaved);
+        found = decompose(sub, incumbent, budget,
+                          {&helper, kLocalInitialVisitsPerVertex * sub.size(), kLocalShare},
+                          kDenseSat);
+        ls_steps += helper.steps();
       } else {
         BranchAndBound bb(sub, incumbent, budget, true, true);
         // The cover hand-off pays on near-cliques whose cliques run to hundreds (the corpus) and
@@ -458,7 +494,7 @@ void register_clique_algorithms() {
                            true, run_bbmc<true, true>});
     CliqueAlgorithms::add({"bbmcx-sat",
                            "BBMCR plus the incremental MaxSAT bound of IncMaxCLQ/MoMC (unit "
-                           "propagation over the colour classes)",
+                           "propagation and failed literals over the colour classes)",
                            true, run_bbmcx_sat});
     CliqueAlgorithms::add({"bbmcx-ls",
                            "BBMCX with a DLS-MC local search interleaved for the lower bound", true,
@@ -479,10 +515,11 @@ void register_clique_algorithms() {
          true, run_pruned<false>});
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
-                           "a near-clique (complement density <= 0.25), else BBMCX on it (bbmcx-sat "
-                           "from density 0.85, with bbmcx-ls's local search interleaved from 0.5; "
-                           "a long sparse search goes on in bbmc-dec's neighbourhoods with the "
-                           "MaxSAT bound)",
+                           "a near-clique (complement density <= 0.25), else BBMCX on it "
+                           "(bbmcx-sat from density 0.85, with bbmcx-ls's local search "
+                           "interleaved from 0.5; bbmc-dec's neighbourhoods with the MaxSAT bound "
+                           "from 0.5 where the degrees are dispersed, and for a long sparse "
+                           "search)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",

@@ -74,8 +74,10 @@ class Decomposition {
   /// A clique through v larger than `size` whose other vertices are v's later neighbours, in
   /// original ids (the maximum such clique, the first the search meets), or empty when there is
   /// none. The search is BBMC, or with `max_sat` the MaxSAT bound of sat_bb.hpp (as LMC does).
-  std::vector<int> solve(int v, int size, SearchBudget& budget, Scratch& s,
-                         bool max_sat = false) const {
+  /// With `max_sat`, `options` are SatBranchAndBound's and `work` (when given) adds the words its
+  /// search touched colouring.
+  std::vector<int> solve(int v, int size, SearchBudget& budget, Scratch& s, bool max_sat = false,
+                         SatOptions options = {}, long long* work = nullptr) const {
     if (core(v) + 1 <= size) return {};  // v's later degree is at most its core number
     std::vector<int>& members = s.members;
     members.clear();
@@ -102,9 +104,10 @@ class Decomposition {
     }
     std::vector<int> found;
     if (max_sat) {
-      SatBranchAndBound bb(sub, size - 1, budget);
+      SatBranchAndBound bb(sub, size - 1, budget, options);
       bb.run();
       found = bb.best();
+      if (work) *work += bb.work();
     } else {
       BranchAndBound bb(sub, size - 1, budget);
       bb.run();
@@ -153,13 +156,24 @@ class Decomposition {
 
 }  // namespace
 
-std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget) {
+std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
+                           const Interleaved& helper, SatOptions options) {
   const Decomposition dec(g, budget.deadline);
   Decomposition::Scratch scratch(g);
   std::vector<int> best;
+  long long work = 0;
   for (int v = 0; v < dec.size() && !budget.stopped; ++v) {
+    if (LocalSearch* ls = helper.search) {
+      const long long goal =
+          helper.initial_work + static_cast<long long>(helper.share * static_cast<double>(work));
+      if (goal > ls->work() &&
+          ls->run_until(std::numeric_limits<long long>::max(), goal, budget.deadline) &&
+          ls->best().size() > std::max(best.size(), static_cast<std::size_t>(incumbent))) {
+        best = ls->best();
+      }
+    }
     const int size = std::max(incumbent, static_cast<int>(best.size()));
-    std::vector<int> found = dec.solve(v, size, budget, scratch, true);
+    std::vector<int> found = dec.solve(v, size, budget, scratch, true, options, &work);
     if (!found.empty()) best = std::move(found);
   }
   return best;

@@ -701,15 +701,20 @@ TEST(MaxSatBound, NeverPrunesBelowTheCliqueNumber) {
     const double density = 0.3 + 0.65 * static_cast<double>(rep % 11) / 10.0;
     const BitGraph g = test::random_graph(n, density, rng);
     const int omega = test::brute_force_clique_number(g);
-    detail::SearchBudget budget = detail::make_budget({});
-    detail::SatBranchAndBound below(g, omega - 1, budget);
-    below.run();
-    ASSERT_EQ(static_cast<int>(below.best().size()), omega) << "rep " << rep;
-    ASSERT_TRUE(g.is_clique(below.best()));
-    detail::SatBranchAndBound at(g, omega, budget);
-    at.run();
-    ASSERT_TRUE(at.best().empty()) << "rep " << rep;
-    EXPECT_FALSE(budget.stopped);
+    // With and without Re-NUMBER and failed literals (auto's dense paths go without both).
+    for (const detail::SatOptions options : {detail::SatOptions{true, true}, {false, false},
+                                             {true, false}, {false, true}}) {
+      detail::SearchBudget budget = detail::make_budget({});
+      detail::SatBranchAndBound below(g, omega - 1, budget, options);
+      below.run();
+      ASSERT_EQ(static_cast<int>(below.best().size()), omega)
+          << "rep " << rep << " options " << options.renumber << options.failed_literals;
+      ASSERT_TRUE(g.is_clique(below.best()));
+      detail::SatBranchAndBound at(g, omega, budget, options);
+      at.run();
+      ASSERT_TRUE(at.best().empty()) << "rep " << rep;
+      EXPECT_FALSE(budget.stopped);
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cliques/detail/bbmc.hpp"
+#include "cliques/detail/sat_bb.hpp"
 #include "cliques/max_clique.hpp"
 
 namespace verifybench::detail {
@@ -17,9 +18,20 @@ inline int max_core(const CoreDecomposition& cd) {
 /// The vertices of `g` left after peeling, again and again, those of degree below k (ascending).
 std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point deadline);
 
+/// A local search on the same graph run between the decomposition's subproblems, as
+/// BranchAndBound::interleave() runs it between nodes: to `initial_work` plus `share` times the
+/// words the subproblems' searches have touched colouring.
+struct Interleaved {
+  LocalSearch* search = nullptr;
+  long long initial_work = 0;
+  double share = 0;
+};
+
 /// The largest clique above `incumbent` (ids of g) by the decomposition with the MaxSAT bound in
-/// each neighbourhood, or empty; budget.stopped when the budget ran out first.
-std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget);
+/// each neighbourhood (SatBranchAndBound with `options`), or empty; budget.stopped when the
+/// budget ran out first.
+std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
+                           const Interleaved& helper = {}, SatOptions options = {});
 
 /// bbmc-dec: BBMC on each vertex's later neighbours in degeneracy order (PMC's scheme).
 CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p);

@@ -18,33 +18,46 @@
 // those classes are frozen (later tests and re-numbering skip them, which keeps the subsets
 // disjoint), so A keeps the bound r and v is never branched on. Before the test, v is
 // re-numbered into a low class when it can be (Tomita's Re-NUMBER, BBMCR), which keeps every
-// class. A vertex left in B at colour c keeps the bound min(c, r + its rank in B): the low classes
-// bound A by r, and B's first vertices by their colours or their count.
+// class (SatOptions::renumber). A vertex left in B at colour c keeps the bound min(c, r + its rank
+// in B): the low classes bound A by r, and B's first vertices by their colours or their count.
 //
-// Failed literals (IncMaxCLQ and MoMC test the classes of two vertices left where propagation
-// alone finds no conflict) are not tried: on C125.9, p_hat300-3, MANN_a27 and gen200_p0.9_55 they
-// removed under 1% of the nodes at 20-50% more time a node (BENCHMARK.md, section 45).
+// Where unit propagation alone finds no conflict, each low class of two vertices left can be
+// tested by failed literals (IncMaxCLQ, MoMC; SatOptions::failed_literals): when every one of its
+// vertices, set true on top of the propagation, leads to a conflict, the class with the union of
+// their reasons is inconsistent.
 //
 // Cost: a test keeps the members left as a bitset and a count per class; setting u true clears
 // u's non-neighbours a word at a time and walks only those (a few bits on dense graphs) instead
 // of intersecting every class with u's row: on MANN_a27 (density 0.99) 5x cheaper (316 -> 62
-// ms; section 42). Against BBMCX on the same incumbent: 0.66x on C125.9 (0.90), 1.0x on
-// p_hat300-3 (0.74), 1.3-1.4x on brock200_1 and sanr200_0.7 (0.7-0.75) (BENCHMARK.md, section 45).
+// ms; section 42).
 #include <vector>
 
 #include "cliques/detail/bbmc.hpp"
 
 namespace verifybench::detail {
 
+/// What the test tries besides unit propagation. Both pay on the sparse neighbourhoods of
+/// correspondence graphs (the corpus's k00_198_94 0.5 k10 through the decomposition: 157,000
+/// nodes and 8.7 s with them, 740,000 and 24 s without) and cost more than they save on dense
+/// graphs (p_hat300-3's decomposition 140 -> 117 ms without them, C125.9 8.7 -> 6.8 ms, MANN_a27
+/// 57 -> 43 ms; BENCHMARK.md, sections 45 and 46).
+struct SatOptions {
+  bool renumber = true;         ///< Re-NUMBER v before the test
+  bool failed_literals = true;  ///< probe the classes of two vertices left where propagation stops
+};
+
 class SatBranchAndBound {
  public:
-  SatBranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget);
+  SatBranchAndBound(const BitGraph& g, int incumbent, SearchBudget& budget,
+                    SatOptions options = {});
 
   void run();
   /// A clique larger than the incumbent (ids of g), or empty when none was found.
   const std::vector<int>& best() const { return best_; }
   /// The number of branching vertices the MaxSAT test took out of B (for the benchmarks).
   long long absorbed() const { return absorbed_; }
+  /// Words touched colouring, over all nodes (what an interleaved local search is budgeted by).
+  long long work() const { return work_; }
 
   /// Hands every node whose candidates are a near-clique to a CoverSearch, as
   /// BranchAndBound::hand_off_near_cliques() does, when it needs at least `min_needed` vertices.
@@ -70,8 +83,11 @@ class SatBranchAndBound {
   // Re-NUMBER with the test's counts: v has one neighbour u in a class k1, u none in a class k2.
   bool renumber(int v, int low);
   bool no_neighbour_in(int u, int k) const;  // no member of low class k is u's neighbour
-  // Propagates the queued units; returns the emptied class or -1.
-  int up_propagate();
+  // Propagates the queued units from queue position `from`; returns the emptied class or -1.
+  int up_propagate(std::size_t from);
+  // Where propagation stops: a class of two members left each of which, set true, propagates to
+  // a conflict (IncMaxCLQ's failed literals); returns it with the reasons in marks_, or -1.
+  int failed_literal(int low);
   void up_set_unit(int cls);
   void mark_reasons(int cls, std::vector<char>& marks);
 
@@ -80,7 +96,9 @@ class SatBranchAndBound {
   int best_size_;
   SearchBudget& budget_;
   int cover_min_ = 0;  // 0 = no hand-off
+  SatOptions options_;
   long long absorbed_ = 0;
+  long long work_ = 0;
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;
   std::vector<std::vector<int>> order_, colour_;
@@ -89,16 +107,18 @@ class SatBranchAndBound {
   std::vector<char> frozen_;
   int colours_ = 0, coloured_ = 0, lo_ = 0, end_ = 0;  // words [lo_, end_) hold candidates
 
-  std::vector<int> class_of_;      // per vertex of A: its class
-  std::vector<int> size_;          // per class: its members
-  std::vector<int> count_;         // per class: members left in R (-1: frozen)
+  std::vector<int> class_of_;  // per vertex of A: its class
+  std::vector<int> size_;      // per class: its members
+  std::vector<int> count_;     // per class: members left in R (-1: frozen)
+  std::vector<Word> saved_R_;  // failed_literal(): R and the counts before a probe
+  std::vector<int> saved_count_;
   std::vector<char> unit_of_;      // per class: queued as a unit
   std::vector<int> queue_;         // classes queued as units, in order
   std::vector<int> reason_head_;   // per class: first reason edge (-1 = none)
   std::vector<int> reason_class_;  // per edge: the unit class that removed vertices
   std::vector<int> reason_owner_;  // per edge: the class it removed them from
   std::vector<int> reason_next_;   // per edge: next edge of the same class
-  std::vector<int> stack_;
+  std::vector<int> stack_, ones_;  // ones_: the classes a test leaves one member
   std::vector<char> marks_;
 };
 
