@@ -21,6 +21,9 @@ constexpr int kMaxProbeClass = 2;
 // classes, and a few vertices fewer among many children saves little (p_hat300-3: 1.16 -> 1.01 s).
 constexpr int kMaxBranching = 32;
 constexpr int kCoverMargin = 16;  // as BranchAndBound::near_clique()
+// frozen_: a class in an inconsistent subset found for an earlier colour group (out of the tests),
+// or for the current one (pending: still in its tests, but taking no vertex in).
+constexpr char kPending = 2, kFrozen = 1;
 
 inline void set_bit(Word* b, int v) { b[v / kBits] |= Word{1} << (v % kBits); }
 inline void clear_bit(Word* b, int v) { b[v / kBits] &= ~(Word{1} << (v % kBits)); }
@@ -81,6 +84,9 @@ void SatBranchAndBound::index_classes(int low) {
   L_ = A_;
   R_.assign(static_cast<std::size_t>(W_), 0);
   count_.resize(static_cast<std::size_t>(low));
+  open_ = size_;
+  marks_.assign(static_cast<std::size_t>(low), 0);
+  marked_.clear();
   unit_of_.assign(static_cast<std::size_t>(low), 0);
   reason_head_.assign(static_cast<std::size_t>(low), -1);
 }
@@ -91,6 +97,7 @@ void SatBranchAndBound::join(int v, int k) {
   set_bit(L_.data(), v);
   class_of_[static_cast<std::size_t>(v)] = k;
   ++size_[static_cast<std::size_t>(k)];
+  ++open_[static_cast<std::size_t>(k)];  // only free classes take vertices in
 }
 
 int SatBranchAndBound::member(int k) const {
@@ -112,6 +119,7 @@ bool SatBranchAndBound::renumber(int v, int low) {
   const Word* N = g_.row(v);
   for (int k1 : ones_) {  // the classes where v has one neighbour
     if (k1 >= low - 1) break;
+    if (frozen_[static_cast<std::size_t>(k1)]) continue;  // shared: it takes no vertex in
     Word* C1 = classes_.data() + static_cast<std::size_t>(k1) * W_;
     int u = -1;
     for (int x = lo_; x < end_ && u < 0; ++x)
@@ -122,6 +130,7 @@ bool SatBranchAndBound::renumber(int v, int low) {
     if (k2 == k1) continue;
     clear_bit(C1, u);
     --size_[static_cast<std::size_t>(k1)];
+    --open_[static_cast<std::size_t>(k1)];
     join(u, k2);
     join(v, k1);
     return true;
@@ -168,6 +177,7 @@ int SatBranchAndBound::up_propagate(std::size_t from) {
 void SatBranchAndBound::mark_reasons(int cls, std::vector<char>& marks) {
   std::vector<int>& stack = stack_;
   stack.assign(1, cls);
+  if (!marks[static_cast<std::size_t>(cls)]) marked_.push_back(cls);
   marks[static_cast<std::size_t>(cls)] = 1;
   while (!stack.empty()) {
     const int k = stack.back();
@@ -177,6 +187,7 @@ void SatBranchAndBound::mark_reasons(int cls, std::vector<char>& marks) {
       const int q = reason_class_[static_cast<std::size_t>(e)];
       if (!marks[static_cast<std::size_t>(q)]) {
         marks[static_cast<std::size_t>(q)] = 1;
+        marked_.push_back(q);
         stack.push_back(q);
       }
     }
@@ -186,9 +197,7 @@ void SatBranchAndBound::mark_reasons(int cls, std::vector<char>& marks) {
 bool SatBranchAndBound::test(int v, int low) {
   // v true: every class keeps only v's neighbours. v's singleton never empties (every vertex
   // left is its neighbour), so no reason names it: every subset found holds it.
-  for (int k = 0; k < low; ++k)
-    count_[static_cast<std::size_t>(k)] =
-        frozen_[static_cast<std::size_t>(k)] ? -1 : size_[static_cast<std::size_t>(k)];
+  std::copy(open_.begin(), open_.begin() + low, count_.begin());
   const Word* N = g_.row(v);
   for (int x = lo_; x < end_; ++x) {
     const Word L = L_[static_cast<std::size_t>(x)];
@@ -203,7 +212,8 @@ bool SatBranchAndBound::test(int v, int low) {
   for (int k = 0; k < low; ++k) {
     const int c = count_[static_cast<std::size_t>(k)];
     if (c == 0) {
-      join(v, k);
+      // A free class takes v; a pending one is an inconsistent subset with v by itself.
+      if (!frozen_[static_cast<std::size_t>(k)]) join(v, k);
       return true;
     }
     if (c == 1) ones_.push_back(k);
@@ -234,7 +244,7 @@ int SatBranchAndBound::failed_literal(int low) {
     for (int x = lo_; x < end_; ++x)
       for (Word y = C[x] & R_[static_cast<std::size_t>(x)]; y; y &= y - 1)
         members[m++] = x * kBits + lowest_bit(y);
-    marks_.assign(static_cast<std::size_t>(low), 0);
+    clear_marks();
     bool all = true;
     for (int i = 0; i < m && all; ++i) {
       // members[i] alone left in class j, set true.
@@ -268,28 +278,46 @@ int SatBranchAndBound::failed_literal(int low) {
 bool SatBranchAndBound::conflict(int low) {
   int empty = up_propagate(0);
   if (empty >= 0) {
-    marks_.assign(static_cast<std::size_t>(low), 0);
+    clear_marks();
     mark_reasons(empty, marks_);
   } else if (!options_.failed_literals || (empty = failed_literal(low)) < 0) {
     return false;
   }
-  for (int k = 0; k < low; ++k) {
-    if (!marks_[static_cast<std::size_t>(k)]) continue;
-    frozen_[static_cast<std::size_t>(k)] = 1;  // its members take no part in later tests
+  for (int k : marked_) {
+    if (frozen_[static_cast<std::size_t>(k)]) continue;
+    frozen_[static_cast<std::size_t>(k)] = kPending;  // frozen once v's colour group is done
+    pending_.push_back(k);
+  }
+  return true;
+}
+
+void SatBranchAndBound::clear_marks() {
+  for (int k : marked_) marks_[static_cast<std::size_t>(k)] = 0;
+  marked_.clear();
+}
+
+void SatBranchAndBound::freeze_pending() {
+  for (int k : pending_) {
+    frozen_[static_cast<std::size_t>(k)] = kFrozen;  // its members take no part in later tests
+    open_[static_cast<std::size_t>(k)] = -1;
     const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
     for (int x = lo_; x < end_; ++x) L_[static_cast<std::size_t>(x)] &= ~C[x];
   }
-  return true;
+  pending_.clear();
 }
 
 int SatBranchAndBound::filter(int depth, int count, int low) {
   auto& ord = order_[static_cast<std::size_t>(depth)];
   auto& col = colour_[static_cast<std::size_t>(depth)];
   frozen_.assign(static_cast<std::size_t>(low), 0);
+  pending_.clear();
   index_classes(low);
   int kept = 0, failures = 0;
   for (int s = 0; s < count; ++s) {
     const int v = ord[static_cast<std::size_t>(s)];
+    if (s > 0 && col[static_cast<std::size_t>(s)] != col[static_cast<std::size_t>(s) - 1]) {
+      freeze_pending();
+    }
     if (failures < kMaxFailures) {
       if (test(v, low)) {
         failures = 0;
