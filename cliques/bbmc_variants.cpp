@@ -306,13 +306,15 @@ double degree_dispersion(const BitGraph& g) {
   const double binomial = (n - 1) * p * (1 - p);
   return binomial > 0 ? std::sqrt(std::max(0.0, sq / n - mean * mean) / binomial) : 0.0;
 }
-// On a dense graph that is no near-clique and whose degrees are this dispersed, auto searches
-// with the degeneracy decomposition and the MaxSAT bound in each neighbourhood, bbmcx-ls's local
-// search run between the subproblems: the decomposition gives the low-degree vertices small
-// subproblems, which a whole-graph colouring mixes in. p_hat300-3 195 -> 142 ms, graphs of the
-// p_hat generator (n 300-400, density 0.6-0.75) 0.66-0.87x; on G(n, p) and brock200_1, whose
-// degrees are not dispersed, it cost 1.0-1.7x (BENCHMARK.md, section 46).
-constexpr double kDispersed = 2.0;
+// On a dense graph that is no near-clique, auto searches with the degeneracy decomposition and
+// the MaxSAT bound in each neighbourhood, bbmcx-ls's local search run between the subproblems,
+// unless the graph is regular (its degrees spread less than this): p_hat300-3 195 -> 142 ms and the
+// p_hat generator's graphs 0.66-0.87x (section 46), and, since the MaxSAT test's colour groups,
+// G(n, p) at p 0.6-0.8 0.54-0.94x, brock200_1 0.75x, sanr200_0.7 0.75x, san200_0.7_1 0.61x (in
+// instructions; brock400_4 and keller4 1.19x). On regular graphs the MaxSAT bound saves the
+// fewest nodes for its cost (johnson16-2-4 1.51x, hamming8-4 0.80x): BBMCX keeps them
+// (BENCHMARK.md, section 49).
+constexpr double kIrregular = 0.5;
 bool hands_off_near_cliques(double graph_density, int incumbent) {
   return incumbent >= kCoverIncumbent || graph_density < kDenseGraph;
 }
@@ -375,7 +377,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         }
         bb.run();
         found = bb.best();
-      } else if (!near_clique && dens >= kDenseGraph && degree_dispersion(g) >= kDispersed) {
+      } else if (!near_clique && dens >= kDenseGraph && degree_dispersion(g) >= kIrregular) {
         LocalSearchParams interleaved = ls;
         interleaved.max_steps = LocalSearchParams{}.max_steps;
         interleaved.target = upper;
@@ -516,10 +518,10 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it "
-                           "(bbmcx-sat from density 0.85, with bbmcx-ls's local search "
-                           "interleaved from 0.5; bbmc-dec's neighbourhoods with the MaxSAT bound "
-                           "from 0.5 where the degrees are dispersed, and for a long sparse "
-                           "search)",
+                           "(bbmcx-sat from density 0.85; from 0.5 bbmc-dec's neighbourhoods "
+                           "with the MaxSAT bound and bbmcx-ls's local search between them, on "
+                           "regular graphs BBMCX with that local search interleaved; the "
+                           "neighbourhoods too after a long sparse search)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",
