@@ -70,21 +70,20 @@ void SatBranchAndBound::index_classes(int low) {
     class_of_.assign(n, -1);
   }
   A_.assign(static_cast<std::size_t>(W_), 0);
-  size_.assign(static_cast<std::size_t>(low), 0);
+  open_.assign(static_cast<std::size_t>(low), 0);
   for (int k = 0; k < low; ++k) {
     const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
     for (int x = lo_; x < end_; ++x) {
       A_[static_cast<std::size_t>(x)] |= C[x];
       for (Word y = C[x]; y; y &= y - 1) {
         class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(y))] = k;
-        ++size_[static_cast<std::size_t>(k)];
+        ++open_[static_cast<std::size_t>(k)];
       }
     }
   }
   L_ = A_;
   R_.assign(static_cast<std::size_t>(W_), 0);
   count_.resize(static_cast<std::size_t>(low));
-  open_ = size_;
   marks_.assign(static_cast<std::size_t>(low), 0);
   marked_.clear();
   unit_of_.assign(static_cast<std::size_t>(low), 0);
@@ -96,7 +95,6 @@ void SatBranchAndBound::join(int v, int k) {
   set_bit(A_.data(), v);
   set_bit(L_.data(), v);
   class_of_[static_cast<std::size_t>(v)] = k;
-  ++size_[static_cast<std::size_t>(k)];
   ++open_[static_cast<std::size_t>(k)];  // only free classes take vertices in
 }
 
@@ -129,7 +127,6 @@ bool SatBranchAndBound::renumber(int v, int low) {
     while (k2 > k1 && (frozen_[static_cast<std::size_t>(k2)] || !no_neighbour_in(u, k2))) --k2;
     if (k2 == k1) continue;
     clear_bit(C1, u);
-    --size_[static_cast<std::size_t>(k1)];
     --open_[static_cast<std::size_t>(k1)];
     join(u, k2);
     join(v, k1);
