@@ -1,9 +1,11 @@
 // The degeneracy decomposition with the MaxSAT bound (cliques/decomposition.cpp) and auto's path
-// through it on dense graphs that are not regular, BBMCX's on regular ones (cliques/bbmc_variants.cpp).
+// through it on dense graphs that are not regular, BBMCX's on regular ones
+// (cliques/bbmc_variants.cpp).
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "clique_oracles.hpp"
 #include "cliques/detail/decomposition.hpp"
 #include "cliques/max_clique.hpp"
 #include "test_util.hpp"
@@ -57,22 +59,12 @@ TEST(Decomposition, WithTheLocalSearchBetweenSubproblemsMatchesBruteForce) {
 TEST(Decomposition, AutoOnDenseGraphsWithDispersedDegreesMatchesTheOracle) {
   // Density 0.6-0.75 with degrees 2-3 times as dispersed as G(n, p)'s and cliques under an eighth
   // of the graph: auto takes the decomposition there (4 of these 6 graphs when this was written).
-  // Too large for the brute force: the oracle is plain BBMC (checked against the brute force in
-  // test_max_clique), and cliquer where it is built.
-  register_clique_algorithms();
   std::mt19937_64 rng(46002);
   for (int n : {180, 200}) {
     for (double lo : {0.3, 0.4, 0.5}) {
-      const BitGraph g = vertex_density_graph(n, lo, 1.0, rng);
-      const auto r = CliqueAlgorithms::get("auto").run(g, {});
-      const auto oracle = CliqueAlgorithms::get("bbmc").run(g, {});
-      ASSERT_TRUE(r.optimal && oracle.optimal);
-      ASSERT_TRUE(g.is_clique(r.clique));
-      ASSERT_EQ(r.clique.size(), oracle.clique.size()) << "n=" << n << " lo=" << lo;
-      if (VB_BUILT_CLIQUER) {
-        const auto peer = CliqueAlgorithms::get("cliquer").run(g, {});
-        ASSERT_EQ(r.clique.size(), peer.clique.size()) << "n=" << n << " lo=" << lo;
-      }
+      test::expect_auto_matches_oracles(vertex_density_graph(n, lo, 1.0, rng),
+                                        "n=" + std::to_string(n) + " lo=" + std::to_string(lo));
+      if (HasFatalFailure()) return;
     }
   }
 }
@@ -86,22 +78,10 @@ BitGraph circulant(int n, const std::vector<int>& distances) {
   return g;
 }
 
-void expect_auto_matches_oracles(const BitGraph& g, const std::string& what) {
-  const auto r = CliqueAlgorithms::get("auto").run(g, {});
-  const auto oracle = CliqueAlgorithms::get("bbmc").run(g, {});
-  ASSERT_TRUE(r.optimal && oracle.optimal) << what;
-  ASSERT_TRUE(g.is_clique(r.clique)) << what;
-  ASSERT_EQ(r.clique.size(), oracle.clique.size()) << what;
-  if (VB_BUILT_CLIQUER) {
-    ASSERT_EQ(r.clique.size(), CliqueAlgorithms::get("cliquer").run(g, {}).clique.size()) << what;
-  }
-}
-
 TEST(Decomposition, AutoOnDenseRandomAndRegularGraphsMatchesTheOracles) {
   // G(n, p) at p 0.6-0.75 (degrees spread as a random graph's: auto's decomposition path) and
-  // circulant graphs of density 0.45-0.8 (regular: auto keeps BBMCX with the interleaved local
-  // search); none a near-clique (clique under an eighth of the graph). The oracles as above.
-  register_clique_algorithms();
+  // circulant graphs of density 0.55-0.75 (regular: auto keeps BBMCX with its interleaved local
+  // search, which must run); none a near-clique (clique under an eighth of the graph).
   std::mt19937_64 rng(49001);
   std::uniform_real_distribution<double> coin(0.0, 1.0);
   for (int n : {150, 180}) {
@@ -110,18 +90,26 @@ TEST(Decomposition, AutoOnDenseRandomAndRegularGraphsMatchesTheOracles) {
       for (int u = 0; u < n; ++u)
         for (int v = u + 1; v < n; ++v)
           if (coin(rng) < p) g.add_edge(u, v);
-      expect_auto_matches_oracles(g, "G(" + std::to_string(n) + ", " + std::to_string(p) + ")");
+      test::expect_auto_matches_oracles(g,
+                                        "G(" + std::to_string(n) + ", " + std::to_string(p) + ")");
+      if (HasFatalFailure()) return;
     }
   }
+  int interleaved = 0;
   for (int n : {101, 131}) {
     for (double p : {0.55, 0.65, 0.75}) {
       std::vector<int> distances;
       for (int d = 1; d <= n / 2; ++d)
         if (coin(rng) < p) distances.push_back(d);
-      expect_auto_matches_oracles(circulant(n, distances),
-                                  "circulant n=" + std::to_string(n) + " p=" + std::to_string(p));
+      const BitGraph g = circulant(n, distances);
+      CliqueSearchResult r;
+      test::expect_auto_matches_oracles(
+          g, "circulant n=" + std::to_string(n) + " p=" + std::to_string(p), &r);
+      if (HasFatalFailure()) return;
+      interleaved += r.local_search_steps > 0;
     }
   }
+  EXPECT_GE(interleaved, 4) << "BBMCX's interleaved local search was not exercised";
 }
 
 }  // namespace
