@@ -315,6 +315,20 @@ double degree_dispersion(const BitGraph& g) {
 // fewest nodes for its cost (johnson16-2-4 1.51x, hamming8-4 0.80x): BBMCX keeps them
 // (BENCHMARK.md, section 49).
 constexpr double kIrregular = 0.5;
+// Below kDenseGraph, on graphs that are no near-clique and whose degrees spread at least twice as
+// wide as a random graph's (the p_hat generator's scheme: dispersion 2.3-7.7 at density
+// 0.24-0.5), BBMCX hands the search to the decomposition after decompose_after_words /
+// kDispersedWordsPerNode nodes (2,000 by default) rather than after that many row words: the hard
+// ones take 0.14-0.8x the time (a p_hat500-2-like graph 386 -> 54 ms, p_hat1000-1 91 -> 74), and
+// the easy correspondence-like graphs of that density (uniform outliers, eps a tenth of the scene)
+// end in BBMCX before it as they did; going to the decomposition at once cost those 2-3x, and at
+// density 0.1-0.15 it mostly loses (BENCHMARK.md, section 50).
+constexpr double kDispersedDensity = 0.2;
+constexpr double kDispersed = 2.0;
+constexpr long long kDispersedWordsPerNode = 20'000;
+bool decomposes(const BitGraph& g, double graph_density) {
+  return graph_density >= kDenseGraph && degree_dispersion(g) >= kIrregular;
+}
 bool hands_off_near_cliques(double graph_density, int incumbent) {
   return incumbent >= kCoverIncumbent || graph_density < kDenseGraph;
 }
@@ -377,7 +391,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         }
         bb.run();
         found = bb.best();
-      } else if (!near_clique && dens >= kDenseGraph && degree_dispersion(g) >= kIrregular) {
+      } else if (!near_clique && decomposes(g, dens)) {
         LocalSearchParams interleaved = ls;
         interleaved.max_steps = LocalSearchParams{}.max_steps;
         interleaved.target = upper;
@@ -408,7 +422,11 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         }
         const bool sparse = dens < kDenseGraph && params.decompose_after_words > 0 &&
                             static_cast<long long>(incumbent) * kNearCliqueRatio < sub.size();
-        const long long own_limit = budget.nodes + params.decompose_after_words / sub.words();
+        const bool dispersed =
+            sparse && dens >= kDispersedDensity && degree_dispersion(g) >= kDispersed;
+        const long long own_limit =
+            budget.nodes + std::max(1LL, params.decompose_after_words /
+                                             (dispersed ? kDispersedWordsPerNode : sub.words()));
         const long long user_limit = budget.node_limit;
         if (sparse && (user_limit == 0 || own_limit < user_limit)) budget.node_limit = own_limit;
         bb.run();
@@ -521,7 +539,8 @@ void register_clique_algorithms() {
                            "(bbmcx-sat from density 0.85; from 0.5 bbmc-dec's neighbourhoods "
                            "with the MaxSAT bound and bbmcx-ls's local search between them, on "
                            "regular graphs BBMCX with that local search interleaved; the "
-                           "neighbourhoods too after a long sparse search)",
+                           "neighbourhoods too after a long sparse search, soon where the "
+                           "degrees spread twice a random graph's)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",

@@ -69,6 +69,41 @@ TEST(Decomposition, AutoOnDenseGraphsWithDispersedDegreesMatchesTheOracle) {
   }
 }
 
+TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
+  // Density 0.25-0.45, no near-clique: where each vertex draws its own density (degrees spread 3-5
+  // times a random graph's) BBMCX hands the search to the decomposition after
+  // decompose_after_words / 20,000 nodes (here 5), on G(n, p) after decompose_after_words / words
+  // (here 10,000 and more: never on these). The hand-off shows as a different node count from the
+  // same search without it (decompose_after_words 0); both ways against the oracles.
+  register_clique_algorithms();
+  std::mt19937_64 rng(50001);
+  CliqueSearchParams soon, never;
+  soon.decompose_after_words = 100'000;
+  never.decompose_after_words = 0;
+  auto handed = [&](const BitGraph& g, const std::string& what) {
+    const auto oracle = CliqueAlgorithms::get("bbmc").run(g, {});
+    const auto a = CliqueAlgorithms::get("auto").run(g, soon);
+    const auto b = CliqueAlgorithms::get("auto").run(g, never);
+    EXPECT_TRUE(a.optimal && b.optimal && oracle.optimal) << what;
+    EXPECT_TRUE(g.is_clique(a.clique) && g.is_clique(b.clique)) << what;
+    EXPECT_EQ(a.clique.size(), oracle.clique.size()) << what;
+    EXPECT_EQ(b.clique.size(), oracle.clique.size()) << what;
+    return a.nodes != b.nodes;
+  };
+  int dispersed_handed = 0, random_handed = 0, graphs = 0;
+  for (int n : {200, 300}) {
+    for (double density : {0.25, 0.35, 0.45}) {
+      const std::string what = "n=" + std::to_string(n) + " density=" + std::to_string(density);
+      dispersed_handed +=
+          handed(vertex_density_graph(n, 0.0, 2 * density, rng), "dispersed " + what);
+      random_handed += handed(test::random_graph(n, density, rng), "G(n, p) " + what);
+      ++graphs;
+    }
+  }
+  EXPECT_GE(dispersed_handed, graphs - 1) << "the dispersed graphs were not handed over";
+  EXPECT_EQ(random_handed, 0) << "G(n, p) was handed over";
+}
+
 // A circulant graph on Z_n: i ~ j when their distance around the cycle is in `distances`. Every
 // vertex has the same degree, as in DIMACS's hamming and johnson graphs.
 BitGraph circulant(int n, const std::vector<int>& distances) {
