@@ -52,6 +52,9 @@ def read(path):
     except OSError as e:
         fail(f"{path}: {e.strerror}")
     for i, r in enumerate(rows, start=2):
+        if not (r["n"] or "").isdigit() or not (r["m"] or "").isdigit():
+            fail(f"{path}:{i}: n and m must be integers (n {r['n']!r}, m {r['m']!r}: "
+                 "columns out of order?)")
         try:
             r["solve"] = float(r["solve_s"]) if r["solve_s"] else None
             r["omega_v"] = int(r["omega"]) if r["omega"] else None

@@ -86,5 +86,12 @@ grep -q "omegas disagree on g6" "$out/err" || { echo "FAIL: no warning on stderr
 printf 'graph\tpeer\n' > "$out/bad.tsv"
 rc=0; $py "$src/reports/peers_table.py" "$out/bad.tsv" 2> "$out/err2" >/dev/null || rc=$?
 [ $rc = 2 ] && grep -q "bad.tsv: missing column" "$out/err2" || { echo "FAIL: bad TSV (rc $rc)"; cat "$out/err2"; fail=1; }
+# A row whose columns are out of order (the peer's name first, as scripts/peers once wrote peaty's
+# refusal): the file and line, exit 2.
+{ printf 'graph\tn\tm\tpeer\tomega\tsolve_s\twall_s\tstatus\tset\tknown\tnote\n'
+  printf 'peaty\tg1\t100\t200\t\t\t\terror\ttest\t\tnot built\n'; } > "$out/shifted.tsv"
+rc=0; $py "$src/reports/peers_table.py" "$out/shifted.tsv" 2> "$out/err3" >/dev/null || rc=$?
+[ $rc = 2 ] && grep -q "shifted.tsv:2: n and m must be integers" "$out/err3" ||
+  { echo "FAIL: shifted row (rc $rc)"; cat "$out/err3"; fail=1; }
 [ $fail = 0 ] && echo "peers_table: ok"
 exit $fail
