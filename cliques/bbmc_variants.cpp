@@ -318,11 +318,11 @@ constexpr double kIrregular = 0.5;
 // Below kDenseGraph, on graphs that are no near-clique and whose degrees spread at least twice as
 // wide as a random graph's (the p_hat generator's scheme: dispersion 2.3-7.7 at density
 // 0.24-0.5), BBMCX hands the search to the decomposition after decompose_after_words /
-// kDispersedWordsPerNode nodes (2,000 by default) rather than after that many row words: the hard
-// ones take 0.14-0.8x the time (a p_hat500-2-like graph 386 -> 54 ms, p_hat1000-1 91 -> 74), and
-// the easy correspondence-like graphs of that density (uniform outliers, eps a tenth of the scene)
-// end in BBMCX before it as they did; going to the decomposition at once cost those 2-3x, and at
-// density 0.1-0.15 it mostly loses (BENCHMARK.md, section 50).
+// kDispersedWordsPerNode nodes (2,000 by default) rather than after that many row words: the long
+// searches take 0.12-0.91x the time (a p_hat500-2-like graph 476 -> 59 ms, p_hat1000-1 103 -> 93),
+// and the easy correspondence-like graphs of that density (uniform outliers, eps a tenth of the
+// scene) end in BBMCX before it as they did; going to the decomposition at once cost those
+// 1.2-3x, and at density 0.1-0.15 it mostly loses (BENCHMARK.md, section 50).
 constexpr double kDispersedDensity = 0.2;
 constexpr double kDispersed = 2.0;
 constexpr long long kDispersedWordsPerNode = 20'000;
