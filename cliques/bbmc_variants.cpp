@@ -333,6 +333,16 @@ bool hands_off_near_cliques(double graph_density, int incumbent) {
   return incumbent >= kCoverIncumbent || graph_density < kDenseGraph;
 }
 
+// A near-clique whose clique is under half the pruned graph (the corpus's k-NN dumps: k3 and k10
+// FPFH matches, cliques of 1,200-6,100 among 3,600-14,000 vertices) is out of the cover search's
+// reach at BBMCX's root, whose colouring bound is 40-70% above omega there. BBMCX proves some in a
+// hundred nodes (k00_199_198 and k00_95_94 0.3 k3: 99 and 103) and none of the k10 ones in 30 s
+// (3,800-36,000 nodes); after kWideNearCliqueNodes nodes it hands the search to the decomposition
+// whose neighbourhoods, near-cliques under the degeneracy, the complement's LP bound rules out
+// one by one (2,300 of 2,500 on k08_1500_720 0.3 k10). The corpus: 10 -> 2 graphs unproved in 30
+// s, the k3 dumps 0.3-1.7 s slower to 5-15x faster (BENCHMARK.md, section 51).
+constexpr long long kWideNearCliqueNodes = 256;
+
 // On a sparse graph that is no near-clique, auto's BBMCX colours the whole pruned graph at each
 // node, and its classes mix far-apart regions. Past params.decompose_after_words of rows coloured
 // (nodes times the pruned graph's words) it hands the search to the decomposition of bbmc-dec with
@@ -424,11 +434,17 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
                             static_cast<long long>(incumbent) * kNearCliqueRatio < sub.size();
         const bool dispersed =
             sparse && dens >= kDispersedDensity && degree_dispersion(g) >= kDispersed;
+        const bool wide = near_clique && params.decompose_after_words > 0 &&
+                          hands_off_near_cliques(dens, incumbent) && 2LL * incumbent < sub.size();
         const long long own_limit =
-            budget.nodes + std::max(1LL, params.decompose_after_words /
-                                             (dispersed ? kDispersedWordsPerNode : sub.words()));
+            budget.nodes +
+            (wide ? kWideNearCliqueNodes
+                  : std::max(1LL, params.decompose_after_words /
+                                      (dispersed ? kDispersedWordsPerNode : sub.words())));
         const long long user_limit = budget.node_limit;
-        if (sparse && (user_limit == 0 || own_limit < user_limit)) budget.node_limit = own_limit;
+        if ((sparse || wide) && (user_limit == 0 || own_limit < user_limit)) {
+          budget.node_limit = own_limit;
+        }
         bb.run();
         found = bb.best();
         if (helper) ls_steps += helper->steps();
@@ -440,7 +456,9 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
           budget.stopped = false;
           const int size = std::max(incumbent, static_cast<int>(found.size()));
           try {  // a deadline in its set-up keeps BBMCX's clique
-            std::vector<int> better = decompose(sub, size, budget);
+            std::vector<int> better =
+                wide ? decompose(sub, size, budget, {}, {}, detail::Neighbourhood::kCover)
+                     : decompose(sub, size, budget);
             if (!better.empty()) found = std::move(better);
           } catch (const DeadlinePassed&) {
             budget.stopped = true;

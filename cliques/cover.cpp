@@ -68,6 +68,97 @@ CoverSearch::CoverSearch(const BitGraph& g, int incumbent, SearchBudget& budget)
   }
 }
 
+namespace {
+
+// Kuhn's augmenting paths in H's double cover, from left vertex u, over right vertices not yet
+// visited in this phase; rows of g complemented word by word.
+class DoubleCoverMatching {
+ public:
+  explicit DoubleCoverMatching(const BitGraph& g)
+      : g_(g),
+        n_(g.size()),
+        W_(g.words()),
+        valid_(static_cast<std::size_t>(W_), ~Word{0}),
+        visited_(static_cast<std::size_t>(W_), 0),
+        mate_l_(static_cast<std::size_t>(n_), -1),
+        mate_r_(static_cast<std::size_t>(n_), -1) {
+    if (n_ % kBits != 0) valid_[static_cast<std::size_t>(W_ - 1)] = (Word{1} << (n_ % kBits)) - 1;
+  }
+
+  // Greedy, then phases of augmenting paths until none is left or the matching reaches `goal`.
+  int grow(int goal) {
+    std::vector<Word> free_r = valid_;
+    int first = 0;  // free_r's words before it are empty
+    for (int u = 0; u < n_ && size_ < goal; ++u) {
+      while (first < W_ && free_r[static_cast<std::size_t>(first)] == 0) ++first;
+      for (int w = first; w < W_; ++w) {
+        const Word x = h_word(u, w) & free_r[static_cast<std::size_t>(w)];
+        if (x == 0) continue;
+        const int v = w * kBits + lowest_bit(x);
+        match(u, v);
+        free_r[static_cast<std::size_t>(w)] &= ~(Word{1} << (v % kBits));
+        break;
+      }
+    }
+    for (bool grew = true; grew && size_ < goal;) {
+      grew = false;
+      std::fill(visited_.begin(), visited_.end(), 0);
+      for (int u = 0; u < n_ && size_ < goal; ++u) {
+        if (mate_l_[static_cast<std::size_t>(u)] < 0 && augment(u)) {
+          ++size_;
+          grew = true;
+        }
+      }
+    }
+    return size_;
+  }
+
+ private:
+  Word h_word(int u, int w) const {
+    Word x = ~g_.row(u)[w] & valid_[static_cast<std::size_t>(w)];
+    if (w == u / kBits) x &= ~(Word{1} << (u % kBits));
+    return x;
+  }
+  void match(int u, int v) {
+    mate_l_[static_cast<std::size_t>(u)] = v;
+    mate_r_[static_cast<std::size_t>(v)] = u;
+    ++size_;
+  }
+  bool augment(int u) {
+    for (int w = 0; w < W_; ++w) {
+      for (Word x = h_word(u, w) & ~visited_[static_cast<std::size_t>(w)]; x;
+           x = h_word(u, w) & ~visited_[static_cast<std::size_t>(w)]) {
+        const int v = w * kBits + lowest_bit(x);
+        visited_[static_cast<std::size_t>(w)] |= Word{1} << (v % kBits);
+        const int m = mate_r_[static_cast<std::size_t>(v)];
+        if (m < 0 || augment(m)) {
+          mate_l_[static_cast<std::size_t>(u)] = v;
+          mate_r_[static_cast<std::size_t>(v)] = u;
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  const BitGraph& g_;
+  const int n_, W_;
+  std::vector<Word> valid_, visited_;
+  std::vector<int> mate_l_, mate_r_;
+  int size_ = 0;
+};
+
+}  // namespace
+
+bool lp_rules_out(const BitGraph& g, int target) {
+  // omega <= n - ceil(|M| / 2) <= target once |M| >= 2 (n - target) - 1.
+  const int n = g.size();
+  if (n <= target) return true;
+  const int goal = 2 * (n - target) - 1;
+  if (goal > n) return false;  // a matching of the double cover has at most n edges
+  return DoubleCoverMatching(g).grow(goal) >= goal;
+}
+
 void CoverSearch::run() { node(0); }
 
 int CoverSearch::needed() const { return best_size_ - static_cast<int>(set_.size()) + 1; }

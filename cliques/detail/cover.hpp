@@ -27,6 +27,13 @@
 
 namespace verifybench::detail {
 
+/// Whether the LP bound of the complement H alone shows that `g` has no clique larger than
+/// `target`: a maximum matching M of H's bipartite double cover gives tau(H) >= ceil(|M| / 2), so
+/// omega(g) <= n - ceil(|M| / 2). Bit-parallel on g's rows (H is never listed): O(n x words) a
+/// phase of augmenting paths, against the lists a CoverSearch builds first (n^2 / 2 entries at
+/// density 0.5). Stops as soon as the matching is large enough.
+bool lp_rules_out(const BitGraph& g, int target);
+
 class CoverSearch {
  public:
   /// `g`: the graph (G, not its complement), vertex order irrelevant; `incumbent`: the size to

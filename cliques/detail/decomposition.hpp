@@ -27,11 +27,17 @@ struct Interleaved {
   double share = 0;
 };
 
-/// The largest clique above `incumbent` (ids of g) by the decomposition with the MaxSAT bound in
-/// each neighbourhood (SatBranchAndBound with `options`), or empty; budget.stopped when the
+/// The search in each neighbourhood of the decomposition: BBMC (bbmc-dec), the MaxSAT bound
+/// (SatBranchAndBound, LMC's bound) or, on near-cliques, the LP bound of the complement first and
+/// BBMCX handing near-clique nodes to the cover search where it does not rule the neighbourhood out.
+enum class Neighbourhood { kBbmc, kMaxSat, kCover };
+
+/// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
+/// neighbourhood (kMaxSat: SatBranchAndBound with `options`), or empty; budget.stopped when the
 /// budget ran out first.
 std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
-                           const Interleaved& helper = {}, SatOptions options = {});
+                           const Interleaved& helper = {}, SatOptions options = {},
+                           Neighbourhood search = Neighbourhood::kMaxSat);
 
 /// bbmc-dec: BBMC on each vertex's later neighbours in degeneracy order (PMC's scheme).
 CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p);
