@@ -333,14 +333,18 @@ int SatBranchAndBound::filter(int depth, int count, int low) {
 void SatBranchAndBound::search_cover(const Word* P, int size) {
   std::vector<int> members;
   for_each_bit(P, W_, [&](int v) { members.push_back(v); });
-  const BitGraph sub = permuted(g_, members, budget_.deadline);
-  CoverSearch cover(sub, best_size_ - size, budget_);
-  cover.run();
-  const int found = static_cast<int>(cover.best().size());
-  if (found > 0 && size + found > best_size_) {
-    best_ = clique_;
-    for (int k : cover.best()) best_.push_back(members[static_cast<std::size_t>(k)]);
-    best_size_ = size + found;
+  if (mask_.empty()) mask_.assign(static_cast<std::size_t>(W_), 0);
+  // Past the deadline the peel and the cover search's set-up throw DeadlinePassed: the search
+  // stops here with the best it has (a caller's catch would keep only its own incumbent).
+  try {
+    const std::vector<int> found = near_clique_cover(g_, members, best_size_ - size, budget_, mask_);
+    if (!found.empty() && size + static_cast<int>(found.size()) > best_size_) {
+      best_ = clique_;
+      best_.insert(best_.end(), found.begin(), found.end());
+      best_size_ = static_cast<int>(best_.size());
+    }
+  } catch (const DeadlinePassed&) {
+    budget_.stopped = true;
   }
 }
 

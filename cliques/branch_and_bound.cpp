@@ -193,30 +193,14 @@ void BranchAndBound::search_cover(const Word* P, int size) {
   std::vector<int> members;
   for_each_bit(P, W_, [&](int v) { members.push_back(v); });
   if (mask_.empty()) mask_.assign(static_cast<std::size_t>(W_), 0);
-  BitGraph sub = induced(g_, members, mask_);
   // Past the deadline the peel and the cover search's set-up throw DeadlinePassed: the search
   // stops here with the best it has (a caller's catch would keep only its own incumbent).
   try {
-    // A better clique needs best_size_ - size + 1 of these vertices: peeled to that core, the LP
-    // bound alone, on the rows, ends most such nodes before the cover search lists the complement
-    // (k00_199_198 0.3 k3: 11.6 -> 2.7 s; BENCHMARK.md, section 51).
-    const int target = best_size_ - size;
-    const std::vector<int> core = k_core_of(sub, target, budget_.deadline);
-    if (static_cast<int>(core.size()) <= target) return;
-    if (core.size() < members.size()) {
-      std::size_t kept = 0;
-      for (int k : core) members[kept++] = members[static_cast<std::size_t>(k)];
-      members.resize(kept);
-      sub = induced(g_, members, mask_);
-    }
-    if (lp_rules_out(sub, target)) return;
-    CoverSearch cover(sub, best_size_ - size, budget_);
-    cover.run();
-    const int found = static_cast<int>(cover.best().size());
-    if (found > 0 && size + found > best_size_) {
+    const std::vector<int> found = near_clique_cover(g_, members, best_size_ - size, budget_, mask_);
+    if (!found.empty() && size + static_cast<int>(found.size()) > best_size_) {
       best_ = clique_;
-      for (int k : cover.best()) best_.push_back(members[static_cast<std::size_t>(k)]);
-      best_size_ = size + found;
+      best_.insert(best_.end(), found.begin(), found.end());
+      best_size_ = static_cast<int>(best_.size());
     }
   } catch (const DeadlinePassed&) {
     budget_.stopped = true;

@@ -41,6 +41,17 @@ std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point dea
   return kept;
 }
 
+BitGraph core_subgraph(const BitGraph& g, std::vector<int>& members, int target,
+                       std::vector<Word>& mask, SteadyClock::time_point deadline) {
+  BitGraph sub = BranchAndBound::induced(g, members, mask);
+  const std::vector<int> core = k_core_of(sub, target, deadline);
+  if (core.size() == members.size()) return sub;
+  std::size_t kept = 0;
+  for (int k : core) members[kept++] = members[static_cast<std::size_t>(k)];
+  members.resize(kept);
+  return BranchAndBound::induced(g, members, mask);
+}
+
 namespace {
 
 // |row & mask| over the listed words, with the hardware popcount where the CPU has one.
@@ -125,16 +136,9 @@ class Decomposition {
     if (static_cast<int>(members.size()) + 1 <= size) return {};
     peel(size - 1, s);
     if (static_cast<int>(members.size()) + 1 <= size) return {};
-    BitGraph sub = BranchAndBound::induced(h_, members, s.mask);
     // The subgraph is at most the degeneracy: its peel needs no deadline (nor a throw in a worker).
-    std::vector<int> core = k_core_of(sub, size - 1, kNoDeadline);
-    if (static_cast<int>(core.size()) + 1 <= size) return {};
-    if (core.size() < members.size()) {
-      std::size_t kept = 0;
-      for (int k : core) members[kept++] = members[static_cast<std::size_t>(k)];
-      members.resize(kept);
-      sub = BranchAndBound::induced(h_, members, s.mask);
-    }
+    const BitGraph sub = core_subgraph(h_, members, size - 1, s.mask, kNoDeadline);
+    if (sub.size() + 1 <= size) return {};
     std::vector<int> found;
     if (search == Neighbourhood::kMaxSat) {
       SatBranchAndBound bb(sub, size - 1, budget, options);

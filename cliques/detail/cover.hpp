@@ -34,6 +34,13 @@ namespace verifybench::detail {
 /// density 0.5). Stops as soon as the matching is large enough.
 bool lp_rules_out(const BitGraph& g, int target);
 
+/// A clique larger than `target` in g's near-clique subgraph on `members` (ascending ids), in ids
+/// of g, or empty when there is none: the peel to the core such a clique needs, the LP bound
+/// (lp_rules_out), then the cover search. Throws DeadlinePassed past budget.deadline in the peel
+/// and the cover search's set-up; `mask` as BranchAndBound::induced's.
+std::vector<int> near_clique_cover(const BitGraph& g, std::vector<int> members, int target,
+                                   SearchBudget& budget, std::vector<Word>& mask);
+
 class CoverSearch {
  public:
   /// `g`: the graph (G, not its complement), vertex order irrelevant; `incumbent`: the size to

@@ -18,6 +18,13 @@ inline int max_core(const CoreDecomposition& cd) {
 /// The vertices of `g` left after peeling, again and again, those of degree below k (ascending).
 std::vector<int> k_core_of(const BitGraph& g, int k, SteadyClock::time_point deadline);
 
+/// The subgraph of g on `members` (ascending ids) peeled to the k-core a clique larger than
+/// `target` needs (k = target): `members` keeps the vertices left, vertex k of the result being
+/// members[k]. `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
+/// Throws DeadlinePassed past `deadline`.
+BitGraph core_subgraph(const BitGraph& g, std::vector<int>& members, int target,
+                       std::vector<Word>& mask, SteadyClock::time_point deadline);
+
 /// A local search on the same graph run between the decomposition's subproblems, as
 /// BranchAndBound::interleave() runs it between nodes: to `initial_work` plus `share` times the
 /// words the subproblems' searches have touched colouring.
