@@ -73,40 +73,60 @@ CoverSearch::CoverSearch(const BitGraph& g, int incumbent, SearchBudget& budget)
 namespace {
 
 // Kuhn's augmenting paths in H's double cover, from left vertex u, over right vertices not yet
-// visited in this phase; rows of g complemented word by word.
+// visited in this phase; rows of g complemented word by word. H is g's complement on the vertices
+// of `valid` (a bitset of W words: g's rows are read no further), listed in `members`; the
+// matching lives in `state` and is kept for a later call on an overlapping set.
 class DoubleCoverMatching {
  public:
-  explicit DoubleCoverMatching(const BitGraph& g)
-      : g_(g),
-        n_(g.size()),
-        W_(g.words()),
-        valid_(static_cast<std::size_t>(W_), ~Word{0}),
-        visited_(static_cast<std::size_t>(W_), 0),
-        mate_l_(static_cast<std::size_t>(n_), -1),
-        mate_r_(static_cast<std::size_t>(n_), -1) {
-    if (n_ % kBits != 0) valid_[static_cast<std::size_t>(W_ - 1)] = (Word{1} << (n_ % kBits)) - 1;
+  DoubleCoverMatching(const BitGraph& g, const std::vector<int>& members, const Word* valid,
+                      int W, LpMatching& state)
+      : g_(g), members_(members), valid_(valid), W_(W), s_(state) {
+    const std::size_t n = static_cast<std::size_t>(g.size());
+    if (s_.mate_l.size() != n) {
+      s_.mate_l.assign(n, -1);
+      s_.mate_r.assign(n, -1);
+    }
+    if (s_.visited.size() < static_cast<std::size_t>(W_)) s_.visited.resize(static_cast<std::size_t>(W_));
+    // What is left of the last matching among the members: pairs whose ends both stay (an edge of
+    // H then still), each pair seen from both ends.
+    for (int u : members_) {
+      int& v = s_.mate_l[static_cast<std::size_t>(u)];
+      if (v >= 0 && !(in(v) && s_.mate_r[static_cast<std::size_t>(v)] == u)) v = -1;
+    }
+    for (int v : members_) {
+      int& u = s_.mate_r[static_cast<std::size_t>(v)];
+      if (u >= 0 && !(in(u) && s_.mate_l[static_cast<std::size_t>(u)] == v)) u = -1;
+      if (u >= 0) ++size_;
+    }
   }
 
   // Greedy, then phases of augmenting paths until none is left or the matching reaches `goal`.
   int grow(int goal) {
-    std::vector<Word> free_r = valid_;
+    std::vector<Word> free_r(valid_, valid_ + W_);
+    for (int v : members_) {
+      if (s_.mate_r[static_cast<std::size_t>(v)] >= 0) clear(free_r.data(), v);
+    }
     int first = 0;  // free_r's words before it are empty
-    for (int u = 0; u < n_ && size_ < goal; ++u) {
+    for (std::size_t k = 0; k < members_.size() && size_ < goal; ++k) {
+      const int u = members_[k];
+      if (s_.mate_l[static_cast<std::size_t>(u)] >= 0) continue;
       while (first < W_ && free_r[static_cast<std::size_t>(first)] == 0) ++first;
       for (int w = first; w < W_; ++w) {
         const Word x = h_word(u, w) & free_r[static_cast<std::size_t>(w)];
         if (x == 0) continue;
         const int v = w * kBits + lowest_bit(x);
         match(u, v);
-        free_r[static_cast<std::size_t>(w)] &= ~(Word{1} << (v % kBits));
+        ++size_;
+        clear(free_r.data(), v);
         break;
       }
     }
     for (bool grew = true; grew && size_ < goal;) {
       grew = false;
-      std::fill(visited_.begin(), visited_.end(), 0);
-      for (int u = 0; u < n_ && size_ < goal; ++u) {
-        if (mate_l_[static_cast<std::size_t>(u)] < 0 && augment(u)) {
+      std::fill(s_.visited.begin(), s_.visited.begin() + W_, 0);
+      for (std::size_t k = 0; k < members_.size() && size_ < goal; ++k) {
+        const int u = members_[k];
+        if (s_.mate_l[static_cast<std::size_t>(u)] < 0 && augment(u)) {
           ++size_;
           grew = true;
         }
@@ -116,26 +136,26 @@ class DoubleCoverMatching {
   }
 
  private:
+  bool in(int v) const { return (valid_[v / kBits] >> (v % kBits)) & 1; }
+  static void clear(Word* bits, int v) { bits[v / kBits] &= ~(Word{1} << (v % kBits)); }
   Word h_word(int u, int w) const {
-    Word x = ~g_.row(u)[w] & valid_[static_cast<std::size_t>(w)];
+    Word x = ~g_.row(u)[w] & valid_[w];
     if (w == u / kBits) x &= ~(Word{1} << (u % kBits));
     return x;
   }
   void match(int u, int v) {
-    mate_l_[static_cast<std::size_t>(u)] = v;
-    mate_r_[static_cast<std::size_t>(v)] = u;
-    ++size_;
+    s_.mate_l[static_cast<std::size_t>(u)] = v;
+    s_.mate_r[static_cast<std::size_t>(v)] = u;
   }
   bool augment(int u) {
+    Word* visited = s_.visited.data();
     for (int w = 0; w < W_; ++w) {
-      for (Word x = h_word(u, w) & ~visited_[static_cast<std::size_t>(w)]; x;
-           x = h_word(u, w) & ~visited_[static_cast<std::size_t>(w)]) {
+      for (Word x = h_word(u, w) & ~visited[w]; x; x = h_word(u, w) & ~visited[w]) {
         const int v = w * kBits + lowest_bit(x);
-        visited_[static_cast<std::size_t>(w)] |= Word{1} << (v % kBits);
-        const int m = mate_r_[static_cast<std::size_t>(v)];
+        visited[w] |= Word{1} << (v % kBits);
+        const int m = s_.mate_r[static_cast<std::size_t>(v)];
         if (m < 0 || augment(m)) {
-          mate_l_[static_cast<std::size_t>(u)] = v;
-          mate_r_[static_cast<std::size_t>(v)] = u;
+          match(u, v);
           return true;
         }
       }
@@ -144,21 +164,35 @@ class DoubleCoverMatching {
   }
 
   const BitGraph& g_;
-  const int n_, W_;
-  std::vector<Word> valid_, visited_;
-  std::vector<int> mate_l_, mate_r_;
+  const std::vector<int>& members_;
+  const Word* valid_;
+  const int W_;
+  LpMatching& s_;
   int size_ = 0;
 };
 
 }  // namespace
 
-bool lp_rules_out(const BitGraph& g, int target) {
+bool lp_rules_out(const BitGraph& g, const std::vector<int>& members, const Word* valid, int words,
+                  int target, LpMatching& state) {
   // omega <= n - ceil(|M| / 2) <= target once |M| >= 2 (n - target) - 1.
-  const int n = g.size();
+  const int n = static_cast<int>(members.size());
   if (n <= target) return true;
   const int goal = 2 * (n - target) - 1;
   if (goal > n) return false;  // a matching of the double cover has at most n edges
-  return DoubleCoverMatching(g).grow(goal) >= goal;
+  return DoubleCoverMatching(g, members, valid, words, state).grow(goal) >= goal;
+}
+
+bool lp_rules_out(const BitGraph& g, int target) {
+  const int n = g.size();
+  if (n <= target) return true;
+  if (2 * (n - target) - 1 > n) return false;
+  std::vector<int> all(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v) all[static_cast<std::size_t>(v)] = v;
+  std::vector<Word> valid(static_cast<std::size_t>(g.words()), ~Word{0});
+  if (n % kBits != 0) valid.back() = (Word{1} << (n % kBits)) - 1;
+  LpMatching state;
+  return lp_rules_out(g, all, valid.data(), g.words(), target, state);
 }
 
 std::vector<int> near_clique_cover(const BitGraph& g, std::vector<int> members, int target,

@@ -111,6 +111,7 @@ class Decomposition {
     explicit Scratch(const BitGraph& g) : mask(static_cast<std::size_t>(g.words()), 0) {}
     std::vector<Word> mask;
     std::vector<int> members, words;
+    LpMatching matching;  // kCover's, from one neighbourhood to the next
   };
 
   /// A clique through v larger than `size` whose other vertices are v's later neighbours, in
@@ -136,6 +137,12 @@ class Decomposition {
     if (static_cast<int>(members.size()) + 1 <= size) return {};
     peel(size - 1, s);
     if (static_cast<int>(members.size()) + 1 <= size) return {};
+    // kCover: the LP bound on h_'s rows under a mask of the members, from the last neighbourhood's
+    // matching, ends most neighbourhoods before their subgraph is built (k00_199_198 0.5 k10:
+    // 4,300 of them; BENCHMARK.md, section 52). On the members' k-core (below) it can only be
+    // tighter, so this only skips work.
+    if (search == Neighbourhood::kCover && lp_rules_out_of_members(v, size - 1, s)) return {};
+    const std::size_t peeled = members.size();
     // The subgraph is at most the degeneracy: its peel needs no deadline (nor a throw in a worker).
     const BitGraph sub = core_subgraph(h_, members, size - 1, s.mask, kNoDeadline);
     if (sub.size() + 1 <= size) return {};
@@ -146,10 +153,10 @@ class Decomposition {
       found = bb.best();
       if (work) *work += bb.work();
     } else if (search == Neighbourhood::kCover) {
-      // A near-clique's neighbourhoods are near-cliques: the LP bound of the complement, on the
-      // rows as they are, rules most of them out; BBMCX, handing its near-clique nodes to the
-      // cover search, takes the rest.
-      if (lp_rules_out(sub, size - 1)) return {};
+      // A near-clique's neighbourhoods are near-cliques: the LP bound above ruled most of them
+      // out; on the k-core, when the peel took vertices, it may rule out more; BBMCX, handing its
+      // near-clique nodes to the cover search, takes the rest.
+      if (members.size() < peeled && lp_rules_out(sub, size - 1)) return {};
       BranchAndBound bb(sub, size - 1, budget, true, true);
       bb.hand_off_near_cliques();
       bb.run();
@@ -167,6 +174,13 @@ class Decomposition {
   }
 
  private:
+  bool lp_rules_out_of_members(int v, int target, Scratch& s) const {
+    for (int u : s.members) s.mask[static_cast<std::size_t>(u / kBits)] |= Word{1} << (u % kBits);
+    const bool out = lp_rules_out(h_, s.members, s.mask.data(), v / kBits + 1, target, s.matching);
+    for (int u : s.members) s.mask[static_cast<std::size_t>(u / kBits)] = 0;
+    return out;
+  }
+
   // Drops the members with fewer than k neighbours among the members (a clique of k + 1 members
   // has k in each; LMC's reduction, Jiang, Li & Manya, ECAI 2016), in one pass over h_'s rows and
   // a bitset of the members, before the subgraph is built; solve() then peels the subgraph to its

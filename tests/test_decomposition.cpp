@@ -185,6 +185,54 @@ TEST(Decomposition, TheComplementsLpBoundRulesOutWhatBruteForceDoesAndIsTight) {
   EXPECT_GT(tight, 0);
 }
 
+TEST(Decomposition, TheLpBoundOnMembersFromAKeptMatchingMatchesBruteForce) {
+  // The decomposition's form: a bitset of members of a larger graph, the matching kept from one
+  // member set to the next (sets that share most members, as consecutive neighbourhoods do). Never
+  // rules out a size below the members' clique number, and decides as the bound on the built
+  // subgraph does (the maximum matching's size does not depend on where it started).
+  using detail::kBits;
+  using detail::Word;
+  std::mt19937_64 rng(52001);
+  const int n = 150;  // three words
+  const BitGraph g = test::random_graph(n, 0.7, rng);
+  detail::LpMatching state;
+  std::vector<Word> mask(static_cast<std::size_t>(g.words()), 0);
+  std::vector<char> in(static_cast<std::size_t>(n), 0);
+  std::uniform_int_distribution<int> vertex(0, n - 1);
+  int count = 0, ruled_out = 0;
+  for (int rep = 0; rep < 300; ++rep) {
+    // Swap a few members in and out; keep 8-22 of them.
+    for (int k = 0; k < 4; ++k) {
+      const int v = vertex(rng);
+      if (in[static_cast<std::size_t>(v)] && count > 8) {
+        in[static_cast<std::size_t>(v)] = 0, --count;
+      } else if (!in[static_cast<std::size_t>(v)] && count < 22) {
+        in[static_cast<std::size_t>(v)] = 1, ++count;
+      }
+    }
+    std::vector<int> members;
+    for (int v = 0; v < n; ++v)
+      if (in[static_cast<std::size_t>(v)]) members.push_back(v);
+    std::vector<Word> scratch(static_cast<std::size_t>(g.words()), 0);
+    const BitGraph sub = detail::BranchAndBound::induced(g, members, scratch);
+    const int omega = test::brute_force_clique_number(sub);
+    for (int v : members) {
+      mask[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+    }
+    const int words = members.back() / kBits + 1;
+    for (int t = std::max(0, omega - 2); t <= omega + 1; ++t) {
+      const bool out = detail::lp_rules_out(g, members, mask.data(), words, t, state);
+      if (t < omega) {
+        ASSERT_FALSE(out) << "rep " << rep << " target " << t;
+      }
+      ASSERT_EQ(out, detail::lp_rules_out(sub, t)) << "rep " << rep << " target " << t;
+      ruled_out += out && t == omega;
+    }
+    std::fill(mask.begin(), mask.end(), 0);
+  }
+  EXPECT_GT(ruled_out, 0);
+}
+
 TEST(Decomposition, WithTheCoverSearchInEachNeighbourhoodMatchesBruteForce) {
   // Dense graphs (density 0.6-0.95), where the neighbourhoods' LP bounds rule many out and the
   // rest go to BBMCX with its cover hand-off: from no incumbent, from omega - 1 and from omega.
