@@ -331,13 +331,12 @@ int SatBranchAndBound::filter(int depth, int count, int low) {
 }
 
 void SatBranchAndBound::search_cover(const Word* P, int size) {
-  std::vector<int> members;
-  for_each_bit(P, W_, [&](int v) { members.push_back(v); });
   if (mask_.empty()) mask_.assign(static_cast<std::size_t>(W_), 0);
   // Past the deadline the peel and the cover search's set-up throw DeadlinePassed: the search
   // stops here with the best it has (a caller's catch would keep only its own incumbent).
   try {
-    const std::vector<int> found = near_clique_cover(g_, members, best_size_ - size, budget_, mask_);
+    const std::vector<int> found =
+        near_clique_cover(g_, P, best_size_ - size, budget_, mask_, matching_);
     if (!found.empty() && size + static_cast<int>(found.size()) > best_size_) {
       best_ = clique_;
       best_.insert(best_.end(), found.begin(), found.end());

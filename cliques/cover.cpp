@@ -195,13 +195,19 @@ bool lp_rules_out(const BitGraph& g, int target) {
   return lp_rules_out(g, all, valid.data(), g.words(), target, state);
 }
 
-std::vector<int> near_clique_cover(const BitGraph& g, std::vector<int> members, int target,
-                                   SearchBudget& budget, std::vector<Word>& mask) {
-  // A better clique needs target + 1 of these vertices: peeled to that core, the LP bound alone,
-  // on the rows, ends most such nodes before the cover search lists the complement
-  // (k00_199_198 0.3 k3: 11.6 -> 2.7 s; BENCHMARK.md, section 51).
+std::vector<int> near_clique_cover(const BitGraph& g, const Word* P, int target,
+                                   SearchBudget& budget, std::vector<Word>& mask,
+                                   LpMatching& matching) {
+  std::vector<int> members;
+  for_each_bit(P, g.words(), [&](int v) { members.push_back(v); });
+  // The LP bound alone, on the rows, ends most such nodes before the cover search lists the
+  // complement (k00_199_198 0.3 k3: 11.6 -> 2.7 s; BENCHMARK.md, section 51): first on P as it
+  // is, from the last node's matching, then, when that fails, on the core a better clique needs
+  // (target + 1 of these vertices), where it can only be tighter.
+  if (lp_rules_out(g, members, P, g.words(), target, matching)) return {};
+  const std::size_t before = members.size();
   const BitGraph sub = core_subgraph(g, members, target, mask, budget.deadline);
-  if (sub.size() <= target || lp_rules_out(sub, target)) return {};
+  if (sub.size() <= target || (members.size() < before && lp_rules_out(sub, target))) return {};
   CoverSearch cover(sub, target, budget);
   cover.run();
   std::vector<int> found;

@@ -50,6 +50,15 @@ struct SearchBudget {
   }
 };
 
+/// A matching of the complement's double cover in a graph's ids (mate_l[u] = v: u_L -- v_R), kept
+/// from one lp_rules_out call (cover.hpp) to the next on overlapping vertex sets: its pairs inside
+/// the next set start that call's matching (sibling search nodes and the decomposition's
+/// consecutive neighbourhoods share most of their vertices).
+struct LpMatching {
+  std::vector<int> mate_l, mate_r;
+  std::vector<Word> visited;
+};
+
 /// BBMC: branch on vertices in reverse greedy-colour order; prune when |C| + colour <= |best|.
 /// The graph may be a whole graph or a compact subproblem; `incumbent` is the size to beat.
 /// With `recolour`, a vertex that would get a colour >= kmin is first re-numbered into a lower
@@ -171,6 +180,7 @@ class BranchAndBound {
   BranchAndBound* root_ = this;  // the top search (its local search and incumbent)
   int offset_ = 0;               // vertices of the top search's clique above this graph
   std::vector<Word> mask_;       // search_packed(): zeroed scratch of W_ words
+  LpMatching matching_;         // search_cover()'s, from one node to the next
   LocalSearch* helper_ = nullptr;
   long long helper_initial_ = 0;
   double helper_share_ = 0;

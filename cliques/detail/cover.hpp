@@ -34,26 +34,20 @@ namespace verifybench::detail {
 /// density 0.5). Stops as soon as the matching is large enough.
 bool lp_rules_out(const BitGraph& g, int target);
 
-/// A matching of the complement's double cover in a graph's ids (mate_l[u] = v: u_L -- v_R), kept
-/// from one lp_rules_out call to the next on overlapping vertex sets: its pairs inside the next set
-/// start that call's matching (the decomposition's consecutive neighbourhoods share most members).
-struct LpMatching {
-  std::vector<int> mate_l, mate_r;
-  std::vector<Word> visited;
-};
-
 /// lp_rules_out on g's subgraph on `members` (ascending ids), given also as the bitset `valid` of
 /// g's first `words` words (no member beyond them, the rest of the bitset unread), without
 /// building it; the matching starts from what `state` holds and is left there.
 bool lp_rules_out(const BitGraph& g, const std::vector<int>& members, const Word* valid, int words,
                   int target, LpMatching& state);
 
-/// A clique larger than `target` in g's near-clique subgraph on `members` (ascending ids), in ids
-/// of g, or empty when there is none: the peel to the core such a clique needs, the LP bound
-/// (lp_rules_out), then the cover search. Throws DeadlinePassed past budget.deadline in the peel
-/// and the cover search's set-up; `mask` as BranchAndBound::induced's.
-std::vector<int> near_clique_cover(const BitGraph& g, std::vector<int> members, int target,
-                                   SearchBudget& budget, std::vector<Word>& mask);
+/// A clique larger than `target` in g's near-clique subgraph on the vertices of the bitset `P`
+/// (g.words() words), in ids of g, or empty when there is none: the LP bound (lp_rules_out, from
+/// `matching`, kept for the next call), the peel to the core such a clique needs, the LP bound
+/// there, then the cover search. Throws DeadlinePassed past budget.deadline in the peel and the
+/// cover search's set-up; `mask` as BranchAndBound::induced's.
+std::vector<int> near_clique_cover(const BitGraph& g, const Word* P, int target,
+                                   SearchBudget& budget, std::vector<Word>& mask,
+                                   LpMatching& matching);
 
 class CoverSearch {
  public:

@@ -110,6 +110,7 @@ class SatBranchAndBound {
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;
   std::vector<Word> mask_;  // search_cover(): zeroed scratch of W_ words
+  LpMatching matching_;     // search_cover()'s, from one node to the next
   std::vector<std::vector<int>> order_, colour_;
   std::vector<Word> U_, Q_, classes_, A_;
   std::vector<Word> L_, R_;  // A less the frozen classes; the members left in the current test
