@@ -326,8 +326,16 @@ constexpr double kIrregular = 0.5;
 constexpr double kDispersedDensity = 0.2;
 constexpr double kDispersed = 2.0;
 constexpr long long kDispersedWordsPerNode = 20'000;
+// From this density up, dispersed graphs take the dense graphs' path (the decomposition at once,
+// the interleaved local search, the dense MaxSAT options): the p_hat scheme's graphs of density
+// 0.49-0.5 (p_hat300-2, p_hat700-2 and p_hat1000-2 are 0.49-0.50) 0.66-0.77x the time of the
+// hand-off after 2,000 nodes; at 0.42-0.44 it is 0.83-2.1x, worst on the easy correspondence-like
+// graphs (BENCHMARK.md, section 53).
+constexpr double kDispersedDense = 0.45;
 bool decomposes(const BitGraph& g, double graph_density) {
-  return graph_density >= kDenseGraph && degree_dispersion(g) >= kIrregular;
+  if (graph_density < kDispersedDense) return false;
+  const double dispersion = degree_dispersion(g);
+  return dispersion >= (graph_density >= kDenseGraph ? kIrregular : kDispersed);
 }
 bool hands_off_near_cliques(double graph_density, int incumbent) {
   return incumbent >= kCoverIncumbent || graph_density < kDenseGraph;
@@ -554,7 +562,8 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it "
-                           "(bbmcx-sat from density 0.85; from 0.5 bbmc-dec's neighbourhoods "
+                           "(bbmcx-sat from density 0.85; from 0.5, or 0.45 where the degrees "
+                           "spread twice a random graph's, bbmc-dec's neighbourhoods "
                            "with the MaxSAT bound and bbmcx-ls's local search between them, on "
                            "regular graphs BBMCX with that local search interleaved; the "
                            "neighbourhoods too after a long sparse search, soon where the "

@@ -72,7 +72,7 @@ TEST(Decomposition, AutoOnDenseGraphsWithDispersedDegreesMatchesTheOracle) {
 }
 
 TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
-  // Density 0.25-0.45, no near-clique: where each vertex draws its own density (degrees spread 3-5
+  // Density 0.25-0.42, no near-clique: where each vertex draws its own density (degrees spread 3-5
   // times a random graph's) BBMCX hands the search to the decomposition after
   // decompose_after_words / 20,000 nodes (here 5), on G(n, p) after decompose_after_words / words
   // (here 10,000 and more: never on these). The hand-off shows as a different node count from the
@@ -94,7 +94,7 @@ TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
   };
   int dispersed_handed = 0, random_handed = 0, graphs = 0;
   for (int n : {200, 300}) {
-    for (double density : {0.25, 0.35, 0.45}) {
+    for (double density : {0.25, 0.35, 0.42}) {
       const std::string what = "n=" + std::to_string(n) + " density=" + std::to_string(density);
       dispersed_handed +=
           handed(vertex_density_graph(n, 0.0, 2 * density, rng), "dispersed " + what);
@@ -104,6 +104,40 @@ TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
   }
   EXPECT_GE(dispersed_handed, graphs - 1) << "the dispersed graphs were not handed over";
   EXPECT_EQ(random_handed, 0) << "G(n, p) was handed over";
+}
+
+TEST(Decomposition, AutoTakesDispersedGraphsFromDensity045ToTheDensePath) {
+  // Density 0.45-0.5 with degrees spread as the p_hat scheme's: the dense graphs' path at once
+  // (the decomposition with bbmcx-ls's local search between the subproblems: local-search steps
+  // although no near-clique, and decompose_after_words irrelevant); G(n, p) of that density stays
+  // in BBMCX (no local search, the hand-off as before). Against the oracles either way.
+  register_clique_algorithms();
+  std::mt19937_64 rng(53001);
+  CliqueSearchParams never;
+  never.decompose_after_words = 0;
+  for (int n : {150, 250}) {
+    for (double density : {0.46, 0.48}) {
+      const std::string what = "n=" + std::to_string(n) + " density=" + std::to_string(density);
+      const BitGraph dispersed = vertex_density_graph(n, 0.0, 2 * density, rng);
+      const BitGraph random = test::random_graph(n, density, rng);
+      for (const BitGraph* g : {&dispersed, &random}) {
+        const std::string which = (g == &dispersed ? "dispersed " : "G(n, p) ") + what;
+        const auto oracle = CliqueAlgorithms::get("cliquer").run(*g, {});
+        const auto a = CliqueAlgorithms::get("auto").run(*g, {});
+        const auto b = CliqueAlgorithms::get("auto").run(*g, never);
+        ASSERT_TRUE(a.optimal && b.optimal && oracle.optimal) << which;
+        EXPECT_TRUE(g->is_clique(a.clique)) << which;
+        EXPECT_EQ(a.clique.size(), oracle.clique.size()) << which;
+        EXPECT_EQ(b.clique.size(), oracle.clique.size()) << which;
+        if (g == &dispersed) {
+          EXPECT_GT(a.local_search_steps, 0) << which;
+          EXPECT_EQ(a.nodes, b.nodes) << which;
+        } else {
+          EXPECT_EQ(a.local_search_steps, 0) << which;
+        }
+      }
+    }
+  }
 }
 
 // A circulant graph on Z_n: i ~ j when their distance around the cycle is in `distances`. Every
