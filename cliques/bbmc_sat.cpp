@@ -330,23 +330,6 @@ int SatBranchAndBound::filter(int depth, int count, int low) {
   return kept;
 }
 
-void SatBranchAndBound::search_cover(const Word* P, int size) {
-  if (mask_.empty()) mask_.assign(static_cast<std::size_t>(W_), 0);
-  // Past the deadline the peel and the cover search's set-up throw DeadlinePassed: the search
-  // stops here with the best it has (a caller's catch would keep only its own incumbent).
-  try {
-    const std::vector<int> found =
-        near_clique_cover(g_, P, best_size_ - size, budget_, mask_, matching_);
-    if (!found.empty() && size + static_cast<int>(found.size()) > best_size_) {
-      best_ = clique_;
-      best_.insert(best_.end(), found.begin(), found.end());
-      best_size_ = static_cast<int>(best_.size());
-    }
-  } catch (const DeadlinePassed&) {
-    budget_.stopped = true;
-  }
-}
-
 void SatBranchAndBound::expand(int depth) {
   if (!budget_.spend()) return;
   auto& next_level = levels_[static_cast<std::size_t>(depth) + 1];
@@ -357,7 +340,7 @@ void SatBranchAndBound::expand(int depth) {
   const int needed = best_size_ - size + 1;
   if (cover_min_ > 0 && needed >= cover_min_ &&
       BitGraph::count(P, W_) < 2 * needed + kCoverMargin) {
-    search_cover(P, size);
+    hand_off_near_clique(g_, P, clique_, best_, best_size_, budget_, cover_scratch_);
     return;
   }
   const int kmin = std::max(1, needed);

@@ -189,23 +189,6 @@ bool BranchAndBound::near_clique(const Word* P, int needed) const {
   return BitGraph::count(P, W_) < 2 * needed + kCoverMargin;
 }
 
-void BranchAndBound::search_cover(const Word* P, int size) {
-  if (mask_.empty()) mask_.assign(static_cast<std::size_t>(W_), 0);
-  // Past the deadline the peel and the cover search's set-up throw DeadlinePassed: the search
-  // stops here with the best it has (a caller's catch would keep only its own incumbent).
-  try {
-    const std::vector<int> found =
-        near_clique_cover(g_, P, best_size_ - size, budget_, mask_, matching_);
-    if (!found.empty() && size + static_cast<int>(found.size()) > best_size_) {
-      best_ = clique_;
-      best_.insert(best_.end(), found.begin(), found.end());
-      best_size_ = static_cast<int>(best_.size());
-    }
-  } catch (const DeadlinePassed&) {
-    budget_.stopped = true;
-  }
-}
-
 void BranchAndBound::consult_helper() {
   const long long goal =
       helper_initial_ + static_cast<long long>(helper_share_ * static_cast<double>(work_));
@@ -229,7 +212,7 @@ void BranchAndBound::expand(int depth) {
   Word* next = level(depth + 1).data();
   const int size = static_cast<int>(clique_.size());
   if (cover_ && near_clique(P, best_size_ - size + 1)) {
-    search_cover(P, size);
+    hand_off_near_clique(g_, P, clique_, best_, best_size_, budget_, cover_scratch_);
     return;
   }
   const int count = colour(P, depth, std::max(1, best_size_ - size + 1));

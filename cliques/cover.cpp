@@ -195,16 +195,19 @@ bool lp_rules_out(const BitGraph& g, int target) {
   return lp_rules_out(g, all, valid.data(), g.words(), target, state);
 }
 
+namespace {
+
 std::vector<int> near_clique_cover(const BitGraph& g, const Word* P, int target,
-                                   SearchBudget& budget, std::vector<Word>& mask,
-                                   LpMatching& matching) {
+                                   SearchBudget& budget, NearCliqueScratch& scratch) {
+  std::vector<Word>& mask = scratch.mask;
+  if (mask.empty()) mask.assign(static_cast<std::size_t>(g.words()), 0);
   std::vector<int> members;
   for_each_bit(P, g.words(), [&](int v) { members.push_back(v); });
   // The LP bound alone, on the rows, ends most such nodes before the cover search lists the
   // complement (k00_199_198 0.3 k3: 11.6 -> 2.7 s; BENCHMARK.md, section 51): first on P as it
   // is, from the last node's matching, then, when that fails, on the core a better clique needs
   // (target + 1 of these vertices), where it can only be tighter.
-  if (lp_rules_out(g, members, P, g.words(), target, matching)) return {};
+  if (lp_rules_out(g, members, P, g.words(), target, scratch.matching)) return {};
   const std::size_t before = members.size();
   const BitGraph sub = core_subgraph(g, members, target, mask, budget.deadline);
   if (sub.size() <= target || (members.size() < before && lp_rules_out(sub, target))) return {};
@@ -213,6 +216,26 @@ std::vector<int> near_clique_cover(const BitGraph& g, const Word* P, int target,
   std::vector<int> found;
   for (int k : cover.best()) found.push_back(members[static_cast<std::size_t>(k)]);
   return found;
+}
+
+}  // namespace
+
+void hand_off_near_clique(const BitGraph& g, const Word* P, const std::vector<int>& clique,
+                          std::vector<int>& best, int& best_size, SearchBudget& budget,
+                          NearCliqueScratch& scratch) {
+  const int size = static_cast<int>(clique.size());
+  // Past the deadline the peel and the cover search's set-up throw DeadlinePassed: the search
+  // stops here with the best it has (a caller's catch would keep only its own incumbent).
+  try {
+    const std::vector<int> found = near_clique_cover(g, P, best_size - size, budget, scratch);
+    if (!found.empty() && size + static_cast<int>(found.size()) > best_size) {
+      best = clique;
+      best.insert(best.end(), found.begin(), found.end());
+      best_size = static_cast<int>(best.size());
+    }
+  } catch (const DeadlinePassed&) {
+    budget.stopped = true;
+  }
 }
 
 void CoverSearch::run() { node(0); }

@@ -59,6 +59,13 @@ struct LpMatching {
   std::vector<Word> visited;
 };
 
+/// What a search keeps from one near-clique node's hand-off (hand_off_near_clique, cover.hpp) to
+/// the next: a zeroed bitset of the graph's words and the LP bound's matching.
+struct NearCliqueScratch {
+  std::vector<Word> mask;
+  LpMatching matching;
+};
+
 /// BBMC: branch on vertices in reverse greedy-colour order; prune when |C| + colour <= |best|.
 /// The graph may be a whole graph or a compact subproblem; `incumbent` is the size to beat.
 /// With `recolour`, a vertex that would get a colour >= kmin is first re-numbered into a lower
@@ -166,7 +173,6 @@ class BranchAndBound {
   // LP bound can prune (below 2 x needed + margin).
   static constexpr int kCoverMargin = 16;
   bool near_clique(const Word* P, int needed) const;
-  void search_cover(const Word* P, int size);
 
   void expand(int depth);
 
@@ -180,7 +186,7 @@ class BranchAndBound {
   BranchAndBound* root_ = this;  // the top search (its local search and incumbent)
   int offset_ = 0;               // vertices of the top search's clique above this graph
   std::vector<Word> mask_;       // search_packed(): zeroed scratch of W_ words
-  LpMatching matching_;         // search_cover()'s, from one node to the next
+  NearCliqueScratch cover_scratch_;
   LocalSearch* helper_ = nullptr;
   long long helper_initial_ = 0;
   double helper_share_ = 0;

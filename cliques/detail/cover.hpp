@@ -40,14 +40,14 @@ bool lp_rules_out(const BitGraph& g, int target);
 bool lp_rules_out(const BitGraph& g, const std::vector<int>& members, const Word* valid, int words,
                   int target, LpMatching& state);
 
-/// A clique larger than `target` in g's near-clique subgraph on the vertices of the bitset `P`
-/// (g.words() words), in ids of g, or empty when there is none: the LP bound (lp_rules_out, from
-/// `matching`, kept for the next call), the peel to the core such a clique needs, the LP bound
-/// there, then the cover search. Throws DeadlinePassed past budget.deadline in the peel and the
-/// cover search's set-up; `mask` as BranchAndBound::induced's.
-std::vector<int> near_clique_cover(const BitGraph& g, const Word* P, int target,
-                                   SearchBudget& budget, std::vector<Word>& mask,
-                                   LpMatching& matching);
+/// A branch-and-bound search's hand-off of a near-clique node (BBMCX's, bbmcx-sat's): a clique of P
+/// larger than best_size - |clique|, in ids of g: the LP bound (lp_rules_out, from the scratch's
+/// matching, kept for the next node), the peel to the core such a clique needs, the LP bound
+/// there, then the cover search; when found, `clique` plus it becomes `best`. Past the deadline it
+/// stops the search (budget.stopped) with the best it has.
+void hand_off_near_clique(const BitGraph& g, const Word* P, const std::vector<int>& clique,
+                          std::vector<int>& best, int& best_size, SearchBudget& budget,
+                          NearCliqueScratch& scratch);
 
 class CoverSearch {
  public:

@@ -75,7 +75,6 @@ class SatBranchAndBound {
   int filter(int depth, int count, int low);  // the MaxSAT step; returns |B|
   bool test(int v, int low);  // true when v leaves B (joined, re-numbered or in a conflict)
   bool conflict(int low);     // unit propagation from the units queued; freezes the subset found
-  void search_cover(const Word* P, int size);
 
   // The node's low classes as the tests see them: each vertex's class, the classes' sizes and
   // their union A. Set once per node; re-numbering and joining keep them.
@@ -109,8 +108,7 @@ class SatBranchAndBound {
   long long work_ = 0;
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;
-  std::vector<Word> mask_;  // search_cover(): zeroed scratch of W_ words
-  LpMatching matching_;     // search_cover()'s, from one node to the next
+  NearCliqueScratch cover_scratch_;
   std::vector<std::vector<int>> order_, colour_;
   std::vector<Word> U_, Q_, classes_, A_;
   std::vector<Word> L_, R_;  // A less the frozen classes; the members left in the current test
