@@ -136,7 +136,8 @@ class DoubleCoverMatching {
   }
 
  private:
-  bool in(int v) const { return (valid_[v / kBits] >> (v % kBits)) & 1; }
+  // A kept mate may lie beyond the `W_` words the caller vouches for: not a member then.
+  bool in(int v) const { return v / kBits < W_ && ((valid_[v / kBits] >> (v % kBits)) & 1); }
   static void clear(Word* bits, int v) { bits[v / kBits] &= ~(Word{1} << (v % kBits)); }
   Word h_word(int u, int w) const {
     Word x = ~g_.row(u)[w] & valid_[w];

@@ -53,7 +53,8 @@ struct SearchBudget {
 /// A matching of the complement's double cover in a graph's ids (mate_l[u] = v: u_L -- v_R), kept
 /// from one lp_rules_out call (cover.hpp) to the next on overlapping vertex sets: its pairs inside
 /// the next set start that call's matching (sibling search nodes and the decomposition's
-/// consecutive neighbourhoods share most of their vertices).
+/// consecutive neighbourhoods share most of their vertices). It belongs to one graph: its pairs
+/// are that graph's non-edges.
 struct LpMatching {
   std::vector<int> mate_l, mate_r;
   std::vector<Word> visited;
