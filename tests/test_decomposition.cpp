@@ -110,7 +110,7 @@ TEST(Decomposition, AutoTakesDispersedGraphsFromDensity045ToTheDensePath) {
   // Density 0.45-0.5 with degrees spread as the p_hat scheme's: the dense graphs' path at once
   // (the decomposition with bbmcx-ls's local search between the subproblems: local-search steps
   // although no near-clique, and decompose_after_words irrelevant); G(n, p) of that density stays
-  // in BBMCX (no local search, the hand-off as before). Against the oracles either way.
+  // in BBMCX (no local search, the hand-off as before). Against BBMC either way.
   register_clique_algorithms();
   std::mt19937_64 rng(53001);
   CliqueSearchParams never;
@@ -122,7 +122,7 @@ TEST(Decomposition, AutoTakesDispersedGraphsFromDensity045ToTheDensePath) {
       const BitGraph random = test::random_graph(n, density, rng);
       for (const BitGraph* g : {&dispersed, &random}) {
         const std::string which = (g == &dispersed ? "dispersed " : "G(n, p) ") + what;
-        const auto oracle = CliqueAlgorithms::get("cliquer").run(*g, {});
+        const auto oracle = CliqueAlgorithms::get("bbmc").run(*g, {});
         const auto a = CliqueAlgorithms::get("auto").run(*g, {});
         const auto b = CliqueAlgorithms::get("auto").run(*g, never);
         ASSERT_TRUE(a.optimal && b.optimal && oracle.optimal) << which;
