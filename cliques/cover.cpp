@@ -86,7 +86,8 @@ class DoubleCoverMatching {
       s_.mate_l.assign(n, -1);
       s_.mate_r.assign(n, -1);
     }
-    if (s_.visited.size() < static_cast<std::size_t>(W_)) s_.visited.resize(static_cast<std::size_t>(W_));
+    const std::size_t words = static_cast<std::size_t>(W_);
+    if (s_.visited.size() < words) s_.visited.resize(words);
     // What is left of the last matching among the members: pairs whose ends both stay (an edge of
     // H then still), each pair seen from both ends.
     for (int u : members_) {

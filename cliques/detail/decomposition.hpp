@@ -36,7 +36,8 @@ struct Interleaved {
 
 /// The search in each neighbourhood of the decomposition: BBMC (bbmc-dec), the MaxSAT bound
 /// (SatBranchAndBound, LMC's bound) or, on near-cliques, the LP bound of the complement first and
-/// BBMCX handing near-clique nodes to the cover search where it does not rule the neighbourhood out.
+/// BBMCX handing near-clique nodes to the cover search where it does not rule the neighbourhood
+/// out.
 enum class Neighbourhood { kBbmc, kMaxSat, kCover };
 
 /// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
