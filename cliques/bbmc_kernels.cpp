@@ -78,7 +78,7 @@ bool has_bmi2() {
 
 VB_MULTIVERSION
 int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
-                  int* col, int* classes_used, int* coloured, Word* low) {
+                  int* col, int* classes_used, int* coloured, Word* low, int* low_class) {
   // Candidates end at word `end`: no later word of U or Q is ever set, so no loop goes past it
   // (deep in a correspondence graph the candidates fill a few of its 100+ words a row).
   int end = words;
@@ -106,6 +106,7 @@ int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U,
         } else if (low) {
           low[static_cast<std::size_t>(k - 1) * static_cast<std::size_t>(words) +
               static_cast<std::size_t>(w)] |= Word{1} << b;
+          if (low_class) low_class[v] = k - 1;
         }
       }
     }

@@ -5,6 +5,7 @@
 
 #include "cliques/detail/cover.hpp"
 #include "cliques/detail/sat_bb.hpp"
+#include "core/detail/multiversion.hpp"
 
 namespace verifybench::detail {
 
@@ -24,6 +25,20 @@ constexpr int kCoverMargin = 16;  // as BranchAndBound::near_clique()
 // frozen_: a class in an inconsistent subset found for an earlier colour group (out of the tests),
 // or for the current one (pending: still in its tests, but taking no vertex in).
 constexpr char kPending = 2, kFrozen = 1;
+
+// The union of the `low` classes (words [lo, end) of W each) into A, and each class's size.
+VB_MULTIVERSION_POPCNT
+void union_and_sizes(const Word* classes, int low, int W, int lo, int end, Word* A, int* sizes) {
+  for (int k = 0; k < low; ++k) {
+    const Word* C = classes + static_cast<std::size_t>(k) * W;
+    int members = 0;
+    for (int x = lo; x < end; ++x) {
+      A[x] |= C[x];
+      members += __builtin_popcountll(C[x]);
+    }
+    sizes[k] = members;
+  }
+}
 
 inline void set_bit(Word* b, int v) { b[v / kBits] |= Word{1} << (v % kBits); }
 inline void clear_bit(Word* b, int v) { b[v / kBits] &= ~(Word{1} << (v % kBits)); }
@@ -59,28 +74,22 @@ int SatBranchAndBound::colour(const Word* P, int depth, int kmin) {
   }
   const int low = kmin - 1;
   const bool keep_low = low >= 2 && static_cast<long long>(low) * W_ <= kMaxSatWords;
-  if (keep_low) classes_.assign(static_cast<std::size_t>(low) * W_, 0);
+  if (keep_low) {
+    classes_.assign(static_cast<std::size_t>(low) * W_, 0);
+    if (class_of_.size() < static_cast<std::size_t>(g_.size()))
+      class_of_.assign(static_cast<std::size_t>(g_.size()), -1);
+  }
+  // The kernel records each low vertex's class as it colours it (index_classes() reads them).
   return colour_kernel(P, W_, g_.row(0), kmin, U_.data(), Q_.data(), ord.data(), col.data(),
-                       &colours_, &coloured_, keep_low ? classes_.data() : nullptr);
+                       &colours_, &coloured_, keep_low ? classes_.data() : nullptr,
+                       keep_low ? class_of_.data() : nullptr);
 }
 
 void SatBranchAndBound::index_classes(int low) {
-  const std::size_t n = static_cast<std::size_t>(g_.size());
-  if (class_of_.size() < n) {
-    class_of_.assign(n, -1);
-  }
+  // class_of_ was written by the colouring (colour()) for every vertex of A; only A's are read.
   A_.assign(static_cast<std::size_t>(W_), 0);
-  open_.assign(static_cast<std::size_t>(low), 0);
-  for (int k = 0; k < low; ++k) {
-    const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
-    for (int x = lo_; x < end_; ++x) {
-      A_[static_cast<std::size_t>(x)] |= C[x];
-      for (Word y = C[x]; y; y &= y - 1) {
-        class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(y))] = k;
-        ++open_[static_cast<std::size_t>(k)];
-      }
-    }
-  }
+  open_.resize(static_cast<std::size_t>(low));
+  union_and_sizes(classes_.data(), low, W_, lo_, end_, A_.data(), open_.data());
   L_ = A_;
   R_.assign(static_cast<std::size_t>(W_), 0);
   count_.resize(static_cast<std::size_t>(low));

@@ -29,10 +29,12 @@ void for_each_bit(const Word* bits, int words, F&& f) {
 /// BBMC's bit-parallel greedy colouring of P (rows of `words` words from `rows`): stores the
 /// vertices of colour >= kmin in ord/col (room for |P|), returns how many; sets the classes used
 /// and |P|. U and Q are scratch bitsets of `words` words. When `low` is not null (kmin - 1 zeroed
-/// bitsets of `words` words), class k < kmin is also written to low[k - 1]. Compiled for AVX-512,
-/// AVX2 and baseline x86-64.
+/// bitsets of `words` words), class k < kmin is also written to low[k - 1], and, when `low_class`
+/// is not null either, low_class[v] = k - 1 for each such vertex v. Compiled for AVX-512, AVX2
+/// and baseline x86-64.
 int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U, Word* Q, int* ord,
-                  int* col, int* classes_used, int* coloured, Word* low = nullptr);
+                  int* col, int* classes_used, int* coloured, Word* low = nullptr,
+                  int* low_class = nullptr);
 
 /// Limits shared by every search of one solve: a deadline and a node budget, checked every 64
 /// nodes.

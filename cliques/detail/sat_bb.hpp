@@ -116,7 +116,7 @@ class SatBranchAndBound {
   std::vector<int> pending_;  // classes of the current colour group's inconsistent subsets
   int colours_ = 0, coloured_ = 0, lo_ = 0, end_ = 0;  // words [lo_, end_) hold candidates
 
-  std::vector<int> class_of_;  // per vertex of A: its class
+  std::vector<int> class_of_;  // per vertex of A: its class (written as colour() colours it)
   std::vector<int> open_;      // per class: its members, -1 once frozen (a test's first counts)
   std::vector<int> count_;     // per class: members left in R (-1: frozen)
   std::vector<Word> saved_R_;  // failed_literal(): R and the counts before a probe
