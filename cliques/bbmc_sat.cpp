@@ -25,6 +25,8 @@ constexpr int kCoverMargin = 16;  // as BranchAndBound::near_clique()
 // frozen_: a class in an inconsistent subset found for an earlier colour group (out of the tests),
 // or for the current one (pending: still in its tests, but taking no vertex in).
 constexpr char kPending = 2, kFrozen = 1;
+// SatOptions::relax: a class of a relaxed subset stays in the tests but takes no vertex in.
+constexpr char kRelaxed = 3;
 
 // The union of the `low` classes (words [lo, end) of W each) into A, and each class's size.
 VB_MULTIVERSION_POPCNT
@@ -97,6 +99,16 @@ void SatBranchAndBound::index_classes(int low) {
   marked_.clear();
   unit_of_.assign(static_cast<std::size_t>(low), 0);
   reason_head_.assign(static_cast<std::size_t>(low), -1);
+  classes_count_ = low;
+  pend_.assign(static_cast<std::size_t>(low), 0);
+  if (options_.relax) {
+    if (literals_of_.size() < static_cast<std::size_t>(low)) literals_of_.resize(low);
+    for (int k = 0; k < low; ++k) literals_of_[static_cast<std::size_t>(k)].clear();
+    classes_of_.clear();
+    literal_set_.clear();
+    literals_set_.clear();
+    group_refuted_.clear();
+  }
 }
 
 void SatBranchAndBound::join(int v, int k) {
@@ -151,8 +163,23 @@ void SatBranchAndBound::up_set_unit(int cls) {
 
 int SatBranchAndBound::up_propagate(std::size_t from) {
   for (std::size_t qi = from; qi < queue_.size(); ++qi) {
+    if (options_.relax) {
+      // Used first (CliSAT, LMC): a unit among the classes earlier subsets hold goes before the
+      // others, so a conflict reuses them and leaves fresh classes for the later tests.
+      for (std::size_t j = qi; j < queue_.size(); ++j) {
+        if (frozen_[static_cast<std::size_t>(queue_[j])]) {
+          std::swap(queue_[qi], queue_[j]);
+          break;
+        }
+      }
+    }
     const int q = queue_[qi];
     const int u = member(q);  // the class's one member left: it is set true
+    if (u < 0) {  // ... a relaxation literal (SatOptions::relax)
+      int emptied = -1;
+      if (fix_literal(q, emptied)) return emptied;
+      continue;
+    }
     const Word* N = g_.row(u);
     // u true: each of its non-neighbours leaves its class (u stays: a later unit that is not its
     // neighbour empties q).
@@ -180,6 +207,38 @@ int SatBranchAndBound::up_propagate(std::size_t from) {
   return -1;
 }
 
+bool SatBranchAndBound::fix_literal(int q, int& emptied) {
+  int d = -1;
+  for (int l : literals_of_[static_cast<std::size_t>(q)]) {
+    if (literal_set_[static_cast<std::size_t>(l)] < 0) {
+      d = l;
+      break;
+    }
+  }
+  if (d < 0) return false;
+  literal_set_[static_cast<std::size_t>(d)] = q;
+  literals_set_.push_back(d);
+  // At most one class of the subset is satisfied by d: it leaves the others.
+  for (int j : classes_of_[static_cast<std::size_t>(d)]) {
+    if (j == q) continue;
+    int& c = count_[static_cast<std::size_t>(j)];
+    --c;
+    int& head = reason_head_[static_cast<std::size_t>(j)];
+    if (head < 0 || reason_class_[static_cast<std::size_t>(head)] != q) {
+      reason_class_.push_back(q);
+      reason_owner_.push_back(j);
+      reason_next_.push_back(head);
+      head = static_cast<int>(reason_class_.size()) - 1;
+    }
+    if (c == 0) {
+      emptied = j;
+      return true;
+    }
+    if (c == 1 && !unit_of_[static_cast<std::size_t>(j)]) up_set_unit(j);
+  }
+  return false;
+}
+
 void SatBranchAndBound::mark_reasons(int cls, std::vector<char>& marks) {
   std::vector<int>& stack = stack_;
   stack.assign(1, cls);
@@ -203,7 +262,8 @@ void SatBranchAndBound::mark_reasons(int cls, std::vector<char>& marks) {
 bool SatBranchAndBound::test(int v, int low) {
   // v true: every class keeps only v's neighbours. v's singleton never empties (every vertex
   // left is its neighbour), so no reason names it: every subset found holds it.
-  std::copy(open_.begin(), open_.begin() + low, count_.begin());
+  const int classes = classes_count_;  // the low classes and the relaxed groups' (relax)
+  std::copy(open_.begin(), open_.begin() + classes, count_.begin());
   const Word* N = g_.row(v);
   for (int x = lo_; x < end_; ++x) {
     const Word L = L_[static_cast<std::size_t>(x)];
@@ -215,11 +275,15 @@ bool SatBranchAndBound::test(int v, int low) {
   }
   // The classes v empties (v fits the first: re-numbering made room) and those it leaves one.
   ones_.clear();
-  for (int k = 0; k < low; ++k) {
+  for (int k = 0; k < classes; ++k) {
     const int c = count_[static_cast<std::size_t>(k)];
     if (c == 0) {
       // A free class takes v; a pending one is an inconsistent subset with v by itself.
-      if (!frozen_[static_cast<std::size_t>(k)]) join(v, k);
+      if (!frozen_[static_cast<std::size_t>(k)]) {
+        join(v, k);
+      } else {
+        group_refuted_.push_back(v);
+      }
       return true;
     }
     if (c == 1) ones_.push_back(k);
@@ -228,6 +292,9 @@ bool SatBranchAndBound::test(int v, int low) {
   if (!out) {
     for (int k : ones_) up_set_unit(k);
     out = conflict(low);
+    if (out) group_refuted_.push_back(v);
+    for (int d : literals_set_) literal_set_[static_cast<std::size_t>(d)] = -1;
+    literals_set_.clear();
     for (int k : queue_) unit_of_[static_cast<std::size_t>(k)] = 0;
     queue_.clear();
     for (int k : reason_owner_) reason_head_[static_cast<std::size_t>(k)] = -1;
@@ -240,11 +307,13 @@ bool SatBranchAndBound::test(int v, int low) {
 
 int SatBranchAndBound::failed_literal(int low) {
   const std::size_t base_queue = queue_.size(), base_reasons = reason_class_.size();
+  const std::size_t base_literals = literals_set_.size();
   saved_R_.assign(R_.begin(), R_.end());
   saved_count_.assign(count_.begin(), count_.end());
   for (int j = 0; j < low; ++j) {
     const int c = count_[static_cast<std::size_t>(j)];
     if (c < 2 || c > kMaxProbeClass) continue;
+    if (options_.relax && !literals_of_[static_cast<std::size_t>(j)].empty()) continue;
     int members[kMaxProbeClass], m = 0;
     const Word* C = classes_.data() + static_cast<std::size_t>(j) * W_;
     for (int x = lo_; x < end_; ++x)
@@ -262,6 +331,9 @@ int SatBranchAndBound::failed_literal(int low) {
       if (e >= 0) mark_reasons(e, marks_);
       all = e >= 0;
       // Undo the probe.
+      for (std::size_t k = base_literals; k < literals_set_.size(); ++k)
+        literal_set_[static_cast<std::size_t>(literals_set_[k])] = -1;
+      literals_set_.resize(base_literals);
       for (std::size_t k = base_queue; k < queue_.size(); ++k)
         unit_of_[static_cast<std::size_t>(queue_[k])] = 0;
       queue_.resize(base_queue);
@@ -290,8 +362,10 @@ bool SatBranchAndBound::conflict(int low) {
     return false;
   }
   for (int k : marked_) {
-    if (frozen_[static_cast<std::size_t>(k)]) continue;
-    frozen_[static_cast<std::size_t>(k)] = kPending;  // frozen once v's colour group is done
+    if (pend_[static_cast<std::size_t>(k)]) continue;
+    pend_[static_cast<std::size_t>(k)] = 1;
+    // Frozen (or relaxed) once v's colour group is done; until then it takes no vertex in.
+    if (!frozen_[static_cast<std::size_t>(k)]) frozen_[static_cast<std::size_t>(k)] = kPending;
     pending_.push_back(k);
   }
   return true;
@@ -308,8 +382,50 @@ void SatBranchAndBound::freeze_pending() {
     open_[static_cast<std::size_t>(k)] = -1;
     const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
     for (int x = lo_; x < end_; ++x) L_[static_cast<std::size_t>(x)] &= ~C[x];
+    pend_[static_cast<std::size_t>(k)] = 0;
   }
   pending_.clear();
+  group_refuted_.clear();
+}
+
+void SatBranchAndBound::relax_pending() {
+  if (pending_.empty()) {
+    group_refuted_.clear();
+    return;
+  }
+  // The group's refuted vertices become a class (pairwise non-adjacent: one colour group).
+  const int x = classes_count_++;
+  const auto xs = static_cast<std::size_t>(x);
+  classes_.resize(static_cast<std::size_t>(classes_count_) * W_, 0);
+  Word* C = classes_.data() + xs * W_;
+  for (int v : group_refuted_) {
+    set_bit(C, v);
+    set_bit(L_.data(), v);
+    class_of_[static_cast<std::size_t>(v)] = x;
+  }
+  open_.push_back(static_cast<int>(group_refuted_.size()));
+  count_.push_back(0);
+  marks_.push_back(0);
+  unit_of_.push_back(0);
+  reason_head_.push_back(-1);
+  frozen_.push_back(kRelaxed);
+  pend_.push_back(0);
+  if (literals_of_.size() <= xs) literals_of_.resize(xs + 1);
+  literals_of_[xs].clear();
+  pending_.push_back(x);
+  // One literal shared by the subset's classes, each of which counts it as a member.
+  const int d = static_cast<int>(classes_of_.size());
+  classes_of_.push_back(pending_);
+  literal_set_.push_back(-1);
+  for (int k : pending_) {
+    literals_of_[static_cast<std::size_t>(k)].push_back(d);
+    ++open_[static_cast<std::size_t>(k)];
+    frozen_[static_cast<std::size_t>(k)] = kRelaxed;
+    pend_[static_cast<std::size_t>(k)] = 0;
+  }
+  pending_.clear();
+  group_refuted_.clear();
+  ++relaxed_;
 }
 
 int SatBranchAndBound::filter(int depth, int count, int low) {
@@ -322,7 +438,11 @@ int SatBranchAndBound::filter(int depth, int count, int low) {
   for (int s = 0; s < count; ++s) {
     const int v = ord[static_cast<std::size_t>(s)];
     if (s > 0 && col[static_cast<std::size_t>(s)] != col[static_cast<std::size_t>(s) - 1]) {
-      freeze_pending();
+      if (options_.relax) {
+        relax_pending();
+      } else {
+        freeze_pending();
+      }
     }
     if (failures < kMaxFailures) {
       if (test(v, low)) {

@@ -283,8 +283,11 @@ constexpr double kDenseGraph = 0.5;
 // costs 0.66-1.03x what BBMCX does at p = 0.85-0.875 (C125.9, 0.90: 0.63x) and 1.2-1.5x at
 // 0.75-0.8 (BENCHMARK.md, section 45). Correspondence graphs are far sparser.
 constexpr double kMaxSatDensity = 0.85;
-// On dense graphs the MaxSAT test goes without Re-NUMBER and failed literals (sat_bb.hpp).
-constexpr detail::SatOptions kDenseSat{false, false};
+// On dense graphs the MaxSAT test goes without Re-NUMBER and failed literals (sat_bb.hpp); from
+// kMaxSatDensity it relaxes the inconsistent subsets it finds rather than freezing them, which
+// the decomposition's sparser neighbourhoods do not repay (BENCHMARK.md, section 56).
+constexpr detail::SatOptions kDenseSat{false, false, true};
+constexpr detail::SatOptions kNeighbourhoodSat{false, false, false};
 double density(const BitGraph& g) {
   const double n = g.size();
   return n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
@@ -416,7 +419,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         LocalSearch helper(sub, interleaved);
         found = decompose(sub, incumbent, budget,
                           {&helper, kLocalInitialVisitsPerVertex * sub.size(), kLocalShare},
-                          kDenseSat);
+                          kNeighbourhoodSat);
         ls_steps += helper.steps();
       } else {
         BranchAndBound bb(sub, incumbent, budget, true, true);

@@ -697,14 +697,16 @@ TEST(MaxSatBound, NeverPrunesBelowTheCliqueNumber) {
     const double density = 0.3 + 0.65 * static_cast<double>(rep % 11) / 10.0;
     const BitGraph g = test::random_graph(n, density, rng);
     const int omega = test::brute_force_clique_number(g);
-    // With and without Re-NUMBER and failed literals (auto's dense paths go without both).
-    for (const detail::SatOptions options : {detail::SatOptions{true, true}, {false, false},
-                                             {true, false}, {false, true}}) {
+    // With and without Re-NUMBER, failed literals and relaxation (auto's dense paths go without
+    // the first two).
+    for (int bits = 0; bits < 8; ++bits) {
+      const detail::SatOptions options{(bits & 1) != 0, (bits & 2) != 0, (bits & 4) != 0};
       detail::SearchBudget budget = detail::make_budget({});
       detail::SatBranchAndBound below(g, omega - 1, budget, options);
       below.run();
       ASSERT_EQ(static_cast<int>(below.best().size()), omega)
-          << "rep " << rep << " options " << options.renumber << options.failed_literals;
+          << "rep " << rep << " options " << options.renumber << options.failed_literals
+          << options.relax;
       ASSERT_TRUE(g.is_clique(below.best()));
       detail::SatBranchAndBound at(g, omega, budget, options);
       at.run();
@@ -723,6 +725,32 @@ TEST(MaxSatBound, AbsorbsBranchingVerticesOnDenseGraphs) {
   bb.run();
   EXPECT_GT(bb.absorbed(), 0);
   EXPECT_TRUE(g.is_clique(bb.best()));
+}
+
+TEST(MaxSatBound, RelaxedSubsetsKeepTheCliqueNumberOnDenseGraphs) {
+  // Relaxation (SatOptions::relax) keeps refuted classes in the later tests: on dense graphs it
+  // must run (subsets relaxed) and meet the brute-force clique number, alone and with the other
+  // options, from no incumbent and from omega - 1.
+  std::mt19937_64 rng(32009);
+  long long relaxed = 0;
+  for (int rep = 0; rep < 24; ++rep) {
+    const int n = 28 + rep % 9;
+    const double density = 0.8 + 0.18 * static_cast<double>(rep % 6) / 5.0;
+    const BitGraph g = test::random_graph(n, density, rng);
+    const int omega = test::brute_force_clique_number(g);
+    for (const detail::SatOptions options : {detail::SatOptions{false, false, true},
+                                             detail::SatOptions{true, true, true}}) {
+      for (const int incumbent : {0, omega - 1}) {
+        detail::SearchBudget budget = detail::make_budget({});
+        detail::SatBranchAndBound bb(g, incumbent, budget, options);
+        bb.run();
+        ASSERT_EQ(static_cast<int>(bb.best().size()), omega) << "rep " << rep;
+        ASSERT_TRUE(g.is_clique(bb.best()));
+        relaxed += bb.relaxed();
+      }
+    }
+  }
+  EXPECT_GT(relaxed, 0) << "no subset was relaxed";
 }
 
 TEST(MaxSatBound, MatchesKnownDimacsCliqueNumbers) {

@@ -15,8 +15,14 @@
 // left with one vertex becomes a unit and propagates in turn, a class left empty is a conflict.
 // The classes the conflict depends on (found by walking back the units that removed vertices,
 // the standard conflict analysis) with {v} are an inconsistent subset: v moves from B into A and
-// those classes are frozen (later tests and re-numbering skip them, which keeps the subsets
-// disjoint), so A keeps the bound r and v is never branched on. The vertices of one colour class
+// v is never branched on. Those classes are then relaxed (SatOptions::relax, as LMC, MoMC and
+// CliSAT do): each takes one new literal they share, which satisfies at most one of them (a
+// unit whose last member is the literal sets it for itself and takes it from the others), the
+// group's refuted vertices become a class with it too, and all of them stay in the later tests
+// but take no vertex in. Any clique misses a class of the subset, which the literal pays for, so
+// the relaxed classes bound A u {refuted} by the same r: the bound of the relaxed formula plus
+// one per subset (MoMC's and LMC's incremental MaxSAT reasoning). Without relaxation the classes are frozen
+// instead (later tests and re-numbering skip them, which keeps the subsets disjoint). The vertices of one colour class
 // of B are pairwise non-adjacent, so a clique holds at most one of them: they share their subsets,
 // each testing against the classes its group's earlier members froze too, and the classes freeze
 // for good when the next colour begins (a clique with one of them misses a class of its subset;
@@ -50,6 +56,14 @@ namespace verifybench::detail {
 struct SatOptions {
   bool renumber = true;         ///< Re-NUMBER v before the test
   bool failed_literals = true;  ///< probe the classes of two vertices left where propagation stops
+  /// Relax an inconsistent subset instead of freezing it (LMC, MoMC, CliSAT): each of its classes
+  /// takes one shared relaxation literal (at most one class of the subset is satisfied by it) and
+  /// stays in the later tests; the group's refuted vertices become a class of their own.
+  /// Pays on dense graphs (auto's path from density 0.85: MANN_a27 50 -> 25 ms, G(200, 0.9) 1.86M
+  /// -> 1.16M nodes) and costs 9-44% in the decomposition's neighbourhoods at density 0.6-0.75
+  /// (brock200_4, sanr200_0.7, p_hat500-1: 10-30% fewer nodes, each test dearer; BENCHMARK.md,
+  /// section 56).
+  bool relax = false;
 };
 
 class SatBranchAndBound {
@@ -62,6 +76,8 @@ class SatBranchAndBound {
   const std::vector<int>& best() const { return best_; }
   /// The number of branching vertices the MaxSAT test took out of B (for the benchmarks).
   long long absorbed() const { return absorbed_; }
+  /// The inconsistent subsets relaxed (SatOptions::relax), over all nodes.
+  long long relaxed() const { return relaxed_; }
   /// Words touched colouring, over all nodes (what an interleaved local search is budgeted by).
   long long work() const { return work_; }
 
@@ -96,6 +112,8 @@ class SatBranchAndBound {
   void up_set_unit(int cls);
   void mark_reasons(int cls, std::vector<char>& marks);
   void freeze_pending();  // the classes of the current colour group's subsets leave the tests
+  void relax_pending();   // ... or stay, each with one relaxation literal they share
+  bool fix_literal(int q, int& emptied);  // q's last member is a relaxation literal: set it
   void clear_marks();     // marks_ back to none, through marked_
 
   const BitGraph& g_;
@@ -105,6 +123,7 @@ class SatBranchAndBound {
   int cover_min_ = 0;  // 0 = no hand-off
   SatOptions options_;
   long long absorbed_ = 0;
+  long long relaxed_ = 0;
   long long work_ = 0;
   std::vector<int> clique_, best_;
   std::vector<std::vector<Word>> levels_;
@@ -130,6 +149,17 @@ class SatBranchAndBound {
   std::vector<int> stack_, ones_;  // ones_: the classes a test leaves one member
   std::vector<char> marks_;
   std::vector<int> marked_;  // the classes marks_ holds
+
+  // Relaxation (SatOptions::relax): classes past the low ones are colour groups' refuted
+  // vertices; each relaxation literal lies in the classes of one inconsistent subset and counts
+  // as a member of each until a unit sets it for one of them.
+  int classes_count_ = 0;                      // low classes plus group classes
+  std::vector<char> pend_;                     // per class: in pending_
+  std::vector<int> group_refuted_;             // the current group's vertices refuted by a conflict
+  std::vector<std::vector<int>> literals_of_;  // per class: its relaxation literals
+  std::vector<std::vector<int>> classes_of_;   // per literal: its classes
+  std::vector<int> literal_set_;               // per literal: the class it was set for, or -1
+  std::vector<int> literals_set_;              // literals set in the current test, in order
 };
 
 }  // namespace verifybench::detail
