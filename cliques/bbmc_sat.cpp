@@ -162,8 +162,13 @@ void SatBranchAndBound::up_set_unit(int cls) {
 }
 
 int SatBranchAndBound::up_propagate(std::size_t from) {
+  return options_.relax ? propagate<true>(from) : propagate<false>(from);
+}
+
+template <bool kRelax>
+int SatBranchAndBound::propagate(std::size_t from) {
   for (std::size_t qi = from; qi < queue_.size(); ++qi) {
-    if (options_.relax) {
+    if constexpr (kRelax) {
       // Used first (CliSAT, LMC): a unit among the classes earlier subsets hold goes before the
       // others, so a conflict reuses them and leaves fresh classes for the later tests.
       for (std::size_t j = qi; j < queue_.size(); ++j) {
@@ -175,10 +180,12 @@ int SatBranchAndBound::up_propagate(std::size_t from) {
     }
     const int q = queue_[qi];
     const int u = member(q);  // the class's one member left: it is set true
-    if (u < 0) {  // ... a relaxation literal (SatOptions::relax)
-      int emptied = -1;
-      if (fix_literal(q, emptied)) return emptied;
-      continue;
+    if constexpr (kRelax) {
+      if (u < 0) {  // ... a relaxation literal
+        int emptied = -1;
+        if (fix_literal(q, emptied)) return emptied;
+        continue;
+      }
     }
     const Word* N = g_.row(u);
     // u true: each of its non-neighbours leaves its class (u stays: a later unit that is not its
@@ -281,7 +288,7 @@ bool SatBranchAndBound::test(int v, int low) {
       // A free class takes v; a pending one is an inconsistent subset with v by itself.
       if (!frozen_[static_cast<std::size_t>(k)]) {
         join(v, k);
-      } else {
+      } else if (options_.relax) {
         group_refuted_.push_back(v);
       }
       return true;
@@ -292,9 +299,11 @@ bool SatBranchAndBound::test(int v, int low) {
   if (!out) {
     for (int k : ones_) up_set_unit(k);
     out = conflict(low);
-    if (out) group_refuted_.push_back(v);
-    for (int d : literals_set_) literal_set_[static_cast<std::size_t>(d)] = -1;
-    literals_set_.clear();
+    if (options_.relax) {
+      if (out) group_refuted_.push_back(v);
+      for (int d : literals_set_) literal_set_[static_cast<std::size_t>(d)] = -1;
+      literals_set_.clear();
+    }
     for (int k : queue_) unit_of_[static_cast<std::size_t>(k)] = 0;
     queue_.clear();
     for (int k : reason_owner_) reason_head_[static_cast<std::size_t>(k)] = -1;

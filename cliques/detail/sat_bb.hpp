@@ -106,6 +106,8 @@ class SatBranchAndBound {
   bool no_neighbour_in(int u, int k) const;  // no member of low class k is u's neighbour
   // Propagates the queued units from queue position `from`; returns the emptied class or -1.
   int up_propagate(std::size_t from);
+  template <bool kRelax>
+  int propagate(std::size_t from);  // up_propagate() with or without relaxation literals
   // Where propagation stops: a class of two members left each of which, set true, propagates to
   // a conflict (IncMaxCLQ's failed literals); returns it with the reasons in marks_, or -1.
   int failed_literal(int low);
