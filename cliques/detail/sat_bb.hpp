@@ -59,8 +59,9 @@ struct SatOptions {
   /// Relax an inconsistent subset instead of freezing it (LMC, MoMC, CliSAT): each of its classes
   /// takes one shared relaxation literal (at most one class of the subset is satisfied by it) and
   /// stays in the later tests; the group's refuted vertices become a class of their own.
-  /// Pays on dense graphs (auto's path from density 0.85: MANN_a27 50 -> 25 ms, G(200, 0.9) 1.86M
-  /// -> 1.16M nodes) and costs 9-44% in the decomposition's neighbourhoods at density 0.6-0.75
+  /// Pays on dense graphs (auto's path from density 0.85, with used-first units: MANN_a27 40 -> 21
+  /// ms, G(200, 0.9) 1.86M -> 0.92M nodes and 0.82x the time) and without used-first costs 9-44%
+  /// in the decomposition's neighbourhoods at density 0.6-0.75
   /// (brock200_4, sanr200_0.7, p_hat500-1: 10-30% fewer nodes, each test dearer; BENCHMARK.md,
   /// section 56).
   bool relax = false;
