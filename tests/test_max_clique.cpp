@@ -669,6 +669,27 @@ TEST(MaxSatBound, AutoHandsLongSparseSearchesToTheDecomposition) {
   EXPECT_GE(handed, graphs / 4) << "the hand-off was not exercised";
 }
 
+TEST(MaxSatBound, AutoSearchesLocallyUpFrontOnSparseGraphsWithAWidePrunedGraph) {
+  // A complete k-partite graph (parts of 10, omega = k: one vertex a part) among isolated
+  // vertices: the whole graph is sparse, its greedy clique (k, every maximal clique is maximum)
+  // is 1/10 of the pruned graph, wider than a near-clique (1/8) and within 1/12, where auto runs
+  // the local search up front on sparse graphs (kWideLocalRatio); the lidar_pair FPFH 0.3 k10
+  // dump's kind. The clique number is the oracle.
+  register_clique_algorithms();
+  for (const int k : {6, 9, 12}) {
+    const int part = 10, padding = 600;
+    BitGraph g(k * part + padding);
+    for (int u = 0; u < k * part; ++u)
+      for (int v = u + 1; v < k * part; ++v)
+        if (u / part != v / part) g.add_edge(u, v);
+    const auto r = CliqueAlgorithms::get("auto").run(g, {});
+    ASSERT_TRUE(r.optimal);
+    ASSERT_TRUE(g.is_clique(r.clique));
+    EXPECT_EQ(static_cast<int>(r.clique.size()), k);
+    EXPECT_GT(r.local_search_steps, 0) << "k=" << k << ": no local search up front";
+  }
+}
+
 TEST(MaxSatBound, AutoRunsTheLocalSearchBetweenSubproblemsOnDenseGraphsThatAreNoNearClique) {
   // Density 0.5-0.75 with the clique far under an eighth of the graph: auto runs bbmcx-ls's local
   // search between the decomposition's subproblems (degrees spread as G(n, p)'s; regular graphs
