@@ -161,6 +161,21 @@ void SatBranchAndBound::up_set_unit(int cls) {
   queue_.push_back(cls);
 }
 
+inline bool SatBranchAndBound::lose_member(int j, int q) {
+  int& c = count_[static_cast<std::size_t>(j)];
+  --c;
+  int& head = reason_head_[static_cast<std::size_t>(j)];
+  if (head < 0 || reason_class_[static_cast<std::size_t>(head)] != q) {
+    reason_class_.push_back(q);
+    reason_owner_.push_back(j);
+    reason_next_.push_back(head);
+    head = static_cast<int>(reason_class_.size()) - 1;
+  }
+  if (c == 0) return true;
+  if (c == 1 && !unit_of_[static_cast<std::size_t>(j)]) up_set_unit(j);
+  return false;
+}
+
 int SatBranchAndBound::up_propagate(std::size_t from) {
   return options_.relax ? propagate<true>(from) : propagate<false>(from);
 }
@@ -197,17 +212,7 @@ int SatBranchAndBound::propagate(std::size_t from) {
       R &= ~gone;
       for (; gone; gone &= gone - 1) {
         const int j = class_of_[static_cast<std::size_t>(x * kBits + lowest_bit(gone))];
-        int& c = count_[static_cast<std::size_t>(j)];
-        --c;
-        int& head = reason_head_[static_cast<std::size_t>(j)];
-        if (head < 0 || reason_class_[static_cast<std::size_t>(head)] != q) {
-          reason_class_.push_back(q);
-          reason_owner_.push_back(j);
-          reason_next_.push_back(head);
-          head = static_cast<int>(reason_class_.size()) - 1;
-        }
-        if (c == 0) return j;
-        if (c == 1 && !unit_of_[static_cast<std::size_t>(j)]) up_set_unit(j);
+        if (lose_member(j, q)) return j;
       }
     }
   }
@@ -227,21 +232,10 @@ bool SatBranchAndBound::fix_literal(int q, int& emptied) {
   literals_set_.push_back(d);
   // At most one class of the subset is satisfied by d: it leaves the others.
   for (int j : classes_of_[static_cast<std::size_t>(d)]) {
-    if (j == q) continue;
-    int& c = count_[static_cast<std::size_t>(j)];
-    --c;
-    int& head = reason_head_[static_cast<std::size_t>(j)];
-    if (head < 0 || reason_class_[static_cast<std::size_t>(head)] != q) {
-      reason_class_.push_back(q);
-      reason_owner_.push_back(j);
-      reason_next_.push_back(head);
-      head = static_cast<int>(reason_class_.size()) - 1;
-    }
-    if (c == 0) {
+    if (j != q && lose_member(j, q)) {
       emptied = j;
       return true;
     }
-    if (c == 1 && !unit_of_[static_cast<std::size_t>(j)]) up_set_unit(j);
   }
   return false;
 }

@@ -117,6 +117,8 @@ class SatBranchAndBound {
   void freeze_pending();  // the classes of the current colour group's subsets leave the tests
   void relax_pending();   // ... or stay, each with one relaxation literal they share
   bool fix_literal(int q, int& emptied);  // q's last member is a relaxation literal: set it
+  // Class j loses a member because unit q was set (the reason recorded); true when j is empty.
+  bool lose_member(int j, int q);
   void clear_marks();     // marks_ back to none, through marked_
 
   const BitGraph& g_;
