@@ -21,11 +21,11 @@
 // group's refuted vertices become a class with it too, and all of them stay in the later tests
 // but take no vertex in. Any clique misses a class of the subset, which the literal pays for, so
 // the relaxed classes bound A u {refuted} by the same r: the bound of the relaxed formula plus
-// one per subset (MoMC's and LMC's incremental MaxSAT reasoning). Without relaxation the classes are frozen
-// instead (later tests and re-numbering skip them, which keeps the subsets disjoint). The vertices of one colour class
-// of B are pairwise non-adjacent, so a clique holds at most one of them: they share their subsets,
-// each testing against the classes its group's earlier members froze too, and the classes freeze
-// for good when the next colour begins (a clique with one of them misses a class of its subset;
+// one per subset (MoMC's and LMC's incremental MaxSAT reasoning). Without relaxation the classes
+// are frozen instead (later tests and re-numbering skip them, which keeps the subsets disjoint).
+// The vertices of one colour class of B are pairwise non-adjacent, so a clique holds at most one
+// of them: they share their subsets, each testing against the classes its group's earlier members
+// froze too, and the classes freeze (or are relaxed) for good when the next colour begins (a clique with one of them misses a class of its subset;
 // the union of the group's subsets with the group loses one vertex either way). A shared class
 // takes no vertex in, and one with no neighbour of v left is a subset with v by itself. On dense
 // graphs 14-21% fewer nodes (BENCHMARK.md, section 47). Before the test, v is
