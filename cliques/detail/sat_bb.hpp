@@ -151,7 +151,9 @@ class SatBranchAndBound {
   std::vector<int> reason_class_;  // per edge: the unit class that removed vertices
   std::vector<int> reason_owner_;  // per edge: the class it removed them from
   std::vector<int> reason_next_;   // per edge: next edge of the same class
-  std::vector<int> stack_, ones_;  // ones_: the classes a test leaves one member
+  std::vector<int> stack_;
+  std::vector<int> ones_;  // the classes a test leaves one member: the first ones_count_
+  int ones_count_ = 0;
   std::vector<char> marks_;
   std::vector<int> marked_;  // the classes marks_ holds
 
