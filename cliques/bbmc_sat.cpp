@@ -278,7 +278,8 @@ bool SatBranchAndBound::test(int v, int low) {
   // The classes v empties (v fits the first: re-numbering made room) and those it leaves one.
   // Branch-free on the classes left one member (a data-dependent branch there cost a fifth of
   // the test); the first empty class ends the loop.
-  if (ones_.size() < static_cast<std::size_t>(classes)) ones_.resize(static_cast<std::size_t>(classes));
+  if (ones_.size() < static_cast<std::size_t>(classes))
+    ones_.resize(static_cast<std::size_t>(classes));
   int* ones = ones_.data();
   int m = 0;
   ones_count_ = 0;

@@ -25,9 +25,10 @@
 // are frozen instead (later tests and re-numbering skip them, which keeps the subsets disjoint).
 // The vertices of one colour class of B are pairwise non-adjacent, so a clique holds at most one
 // of them: they share their subsets, each testing against the classes its group's earlier members
-// froze too, and the classes freeze (or are relaxed) for good when the next colour begins (a clique with one of them misses a class of its subset;
-// the union of the group's subsets with the group loses one vertex either way). A shared class
-// takes no vertex in, and one with no neighbour of v left is a subset with v by itself. On dense
+// froze too, and the classes freeze (or are relaxed) for good when the next colour begins (a
+// clique with one of them misses a class of its subset; the union of the group's subsets with the
+// group loses one vertex either way). A shared class takes no vertex in, and one with no
+// neighbour of v left is a subset with v by itself. On dense
 // graphs 14-21% fewer nodes (BENCHMARK.md, section 47). Before the test, v is
 // re-numbered into a low class when it can be (Tomita's Re-NUMBER, BBMCR), which keeps every
 // class (SatOptions::renumber). A vertex left in B at colour c keeps the bound min(c, r + its rank
