@@ -282,7 +282,6 @@ bool SatBranchAndBound::test(int v, int low) {
     ones_.resize(static_cast<std::size_t>(classes));
   int* ones = ones_.data();
   int m = 0;
-  ones_count_ = 0;
   for (int k = 0; k < classes; ++k) {
     const int c = count_[static_cast<std::size_t>(k)];
     ones[m] = k;

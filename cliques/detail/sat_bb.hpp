@@ -28,11 +28,11 @@
 // froze too, and the classes freeze (or are relaxed) for good when the next colour begins (a
 // clique with one of them misses a class of its subset; the union of the group's subsets with the
 // group loses one vertex either way). A shared class takes no vertex in, and one with no
-// neighbour of v left is a subset with v by itself. On dense
-// graphs 14-21% fewer nodes (BENCHMARK.md, section 47). Before the test, v is
-// re-numbered into a low class when it can be (Tomita's Re-NUMBER, BBMCR), which keeps every
-// class (SatOptions::renumber). A vertex left in B at colour c keeps the bound min(c, r + its rank
-// in B): the low classes bound A by r, and B's first vertices by their colours or their count.
+// neighbour of v left is a subset with v by itself. On dense graphs 14-21% fewer nodes
+// (BENCHMARK.md, section 47). Before the test, v is re-numbered into a low class when it can be
+// (Tomita's Re-NUMBER, BBMCR), which keeps every class (SatOptions::renumber). A vertex left in
+// B at colour c keeps the bound min(c, r + its rank in B): the low classes bound A by r, and B's
+// first vertices by their colours or their count.
 //
 // Where unit propagation alone finds no conflict, each low class of two vertices left can be
 // tested by failed literals (IncMaxCLQ, MoMC; SatOptions::failed_literals): when every one of its
