@@ -277,7 +277,13 @@ constexpr int kNearCliqueRatio = 8;  // the greedy clique is at least 1/8 of the
 // 30 s rather than 2,047; no other corpus, DIMACS or G(n, p) graph falls between 1/12 and 1/8
 // (BENCHMARK.md, section 56).
 constexpr int kWideLocalRatio = 12;
-long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
+// ... and at most this many steps per vertex of the pruned graph: on small dense graphs the base
+// alone costs more than the search (san200_0.9_1 2.7 -> 0.9 ms, hamming8-2 2.5 -> 1.0, johnson8-4-4
+// 1.7 -> 0.3, the same cliques and nodes; BENCHMARK.md, section 58).
+constexpr long long kLocalStepsPerVertex = 5;
+long long local_steps(int greedy, int vertices) {
+  return std::min(kLocalBaseSteps + 2LL * greedy, kLocalStepsPerVertex * vertices);
+}
 // auto hands near-clique nodes to the cover search on sparse graphs (the correspondence graphs:
 // 3DMatch at density 0.07, omega 60, 15% more instructions without it), and on dense ones only
 // when the incumbent is this large.
@@ -381,7 +387,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
       // A local search on the pruned graph usually beats the greedy starts by 5-30% on
       // near-cliques; the core of the larger incumbent is then smaller.
       LocalSearchParams ls;
-      ls.max_steps = local_steps(incumbent);
+      ls.max_steps = local_steps(incumbent, sub.size());
       ls.seed = derive_seed(params.seed, {kLocalSearchStream});
       ls.time_limit_s = seconds_until(budget.deadline);
       // The whole graph's density, before pruning (one pass over its rows).
