@@ -277,12 +277,28 @@ constexpr int kNearCliqueRatio = 8;  // the greedy clique is at least 1/8 of the
 // 30 s rather than 2,047; no other corpus, DIMACS or G(n, p) graph falls between 1/12 and 1/8
 // (BENCHMARK.md, section 56).
 constexpr int kWideLocalRatio = 12;
-// ... and at most this many steps per vertex of the pruned graph: on small dense graphs the base
-// alone costs more than the search (san200_0.9_1 2.7 -> 0.9 ms, hamming8-2 2.5 -> 1.0, johnson8-4-4
-// 1.7 -> 0.3, the same cliques and nodes; BENCHMARK.md, section 58).
-constexpr long long kLocalStepsPerVertex = 5;
-long long local_steps(int greedy, int vertices) {
-  return std::min(kLocalBaseSteps + 2LL * greedy, kLocalStepsPerVertex * vertices);
+long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
+// Whether a greedy colouring of g (independent sets taken in vertex order) needs at most `k`
+// colours: then no clique has more than k vertices. Stops at colour k + 1.
+bool colours_within(const BitGraph& g, int k) {
+  const int W = g.words();
+  std::vector<Word> U(static_cast<std::size_t>(W), 0), Q(static_cast<std::size_t>(W));
+  for (int v = 0; v < g.size(); ++v)
+    U[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+  for (int colour = 0; colour < k; ++colour) {
+    Q = U;
+    for (int w = 0; w < W; ++w) {
+      while (Q[static_cast<std::size_t>(w)]) {
+        const int v = w * kBits + detail::lowest_bit(Q[static_cast<std::size_t>(w)]);
+        U[static_cast<std::size_t>(w)] &= ~(Word{1} << (v % kBits));
+        const Word* N = g.row(v);
+        for (int x = w; x < W; ++x) Q[static_cast<std::size_t>(x)] &= ~N[x];
+        Q[static_cast<std::size_t>(w)] &= ~(Word{1} << (v % kBits));
+      }
+    }
+    if (std::all_of(U.begin(), U.end(), [](Word x) { return x == 0; })) return true;
+  }
+  return false;
 }
 // auto hands near-clique nodes to the cover search on sparse graphs (the correspondence graphs:
 // 3DMatch at density 0.07, omega 60, 15% more instructions without it), and on dense ones only
@@ -387,7 +403,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
       // A local search on the pruned graph usually beats the greedy starts by 5-30% on
       // near-cliques; the core of the larger incumbent is then smaller.
       LocalSearchParams ls;
-      ls.max_steps = local_steps(incumbent, sub.size());
+      ls.max_steps = local_steps(incumbent);
       ls.seed = derive_seed(params.seed, {kLocalSearchStream});
       ls.time_limit_s = seconds_until(budget.deadline);
       // The whole graph's density, before pruning (one pass over its rows).
@@ -397,8 +413,12 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
       bool near_clique = static_cast<long long>(incumbent) * kNearCliqueRatio >= sub.size();
       const bool wide_sparse = kAuto && dens < kDenseGraph &&
                                static_cast<long long>(incumbent) * kWideLocalRatio >= sub.size();
+      // Where a greedy colouring already bounds the cliques by the incumbent, it is the answer:
+      // neither the local search (4,000 steps and more, 1-2 ms) nor the search runs
+      // (san200_0.9_1, hamming8-2; BENCHMARK.md, section 58).
+      const bool proved = (near_clique || wide_sparse) && colours_within(sub, incumbent);
       std::vector<int> local;
-      if (near_clique || wide_sparse) {
+      if ((near_clique || wide_sparse) && !proved) {
         local = local_search_clique(sub, ls, &ls_steps);
       }
       if (static_cast<int>(local.size()) > incumbent) {
@@ -416,7 +436,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         near_clique = static_cast<long long>(incumbent) * kNearCliqueRatio >= sub.size();
       }
       std::vector<int> found;
-      if (sub.size() <= incumbent) {
+      if (proved || sub.size() <= incumbent) {
         upper = std::min(upper, incumbent);
       } else if (!kAuto) {
         detail::CoverSearch cover(sub, incumbent, budget);

@@ -670,23 +670,35 @@ TEST(MaxSatBound, AutoHandsLongSparseSearchesToTheDecomposition) {
 }
 
 TEST(MaxSatBound, AutoSearchesLocallyUpFrontOnSparseGraphsWithAWidePrunedGraph) {
-  // A complete k-partite graph (parts of 10, omega = k: one vertex a part) among isolated
-  // vertices: the whole graph is sparse, its greedy clique (k, every maximal clique is maximum)
-  // is 1/10 of the pruned graph, wider than a near-clique (1/8) and within 1/12, where auto runs
-  // the local search up front on sparse graphs (kWideLocalRatio); the lidar_pair FPFH 0.3 k10
-  // dump's kind. The clique number is the oracle.
+  // A complete k-partite graph (parts of 10) among isolated vertices, with a 5-cycle inside the
+  // first part: omega = k + 1 (an edge of the cycle and one vertex of each other part), and no
+  // colouring has fewer than k + 2 colours (the cycle needs 3), so no colouring proves a clique.
+  // The whole graph is sparse and the clique about 1/10 of the pruned graph: wider than a
+  // near-clique (1/8) and within 1/12, where auto runs the local search up front on sparse graphs
+  // (kWideLocalRatio); the lidar_pair FPFH 0.3 k10 dump's kind. Without the cycle omega = k and
+  // the greedy colouring (one part a colour) proves the greedy clique: no local search runs.
   register_clique_algorithms();
-  for (const int k : {6, 9, 12}) {
-    const int part = 10, padding = 600;
-    BitGraph g(k * part + padding);
-    for (int u = 0; u < k * part; ++u)
-      for (int v = u + 1; v < k * part; ++v)
-        if (u / part != v / part) g.add_edge(u, v);
-    const auto r = CliqueAlgorithms::get("auto").run(g, {});
-    ASSERT_TRUE(r.optimal);
-    ASSERT_TRUE(g.is_clique(r.clique));
-    EXPECT_EQ(static_cast<int>(r.clique.size()), k);
-    EXPECT_GT(r.local_search_steps, 0) << "k=" << k << ": no local search up front";
+  for (const bool cycle : {true, false}) {
+    for (const int k : {6, 9, 12}) {
+      const int part = 10, padding = 600;
+      BitGraph g(k * part + padding);
+      for (int u = 0; u < k * part; ++u)
+        for (int v = u + 1; v < k * part; ++v)
+          if (u / part != v / part) g.add_edge(u, v);
+      if (cycle)
+        for (int i = 0; i < 5; ++i) g.add_edge(i, (i + 1) % 5);
+      const std::string what =
+          "k=" + std::to_string(k) + (cycle ? " with" : " without") + " the cycle";
+      const auto r = CliqueAlgorithms::get("auto").run(g, {});
+      ASSERT_TRUE(r.optimal) << what;
+      ASSERT_TRUE(g.is_clique(r.clique)) << what;
+      EXPECT_EQ(static_cast<int>(r.clique.size()), cycle ? k + 1 : k) << what;
+      if (cycle) {
+        EXPECT_GT(r.local_search_steps, 0) << what << ": no local search up front";
+      } else {
+        EXPECT_EQ(r.local_search_steps, 0) << what << ": a local search the colouring spares";
+      }
+    }
   }
 }
 
