@@ -278,27 +278,17 @@ constexpr int kNearCliqueRatio = 8;  // the greedy clique is at least 1/8 of the
 // (BENCHMARK.md, section 56).
 constexpr int kWideLocalRatio = 12;
 long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
-// Whether a greedy colouring of g (independent sets taken in vertex order) needs at most `k`
-// colours: then no clique has more than k vertices. Stops at colour k + 1.
+// Whether BBMC's greedy colouring of g (independent sets taken in vertex order) needs at most
+// `k` colours: then no clique has more than k vertices.
 bool colours_within(const BitGraph& g, int k) {
-  const int W = g.words();
-  std::vector<Word> U(static_cast<std::size_t>(W), 0), Q(static_cast<std::size_t>(W));
+  const auto W = static_cast<std::size_t>(g.words());
+  std::vector<Word> all(W, 0), U(W), Q(W);
   for (int v = 0; v < g.size(); ++v)
-    U[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
-  for (int colour = 0; colour < k; ++colour) {
-    Q = U;
-    for (int w = 0; w < W; ++w) {
-      while (Q[static_cast<std::size_t>(w)]) {
-        const int v = w * kBits + detail::lowest_bit(Q[static_cast<std::size_t>(w)]);
-        U[static_cast<std::size_t>(w)] &= ~(Word{1} << (v % kBits));
-        const Word* N = g.row(v);
-        for (int x = w; x < W; ++x) Q[static_cast<std::size_t>(x)] &= ~N[x];
-        Q[static_cast<std::size_t>(w)] &= ~(Word{1} << (v % kBits));
-      }
-    }
-    if (std::all_of(U.begin(), U.end(), [](Word x) { return x == 0; })) return true;
-  }
-  return false;
+    all[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+  std::vector<int> ord(static_cast<std::size_t>(g.size())), col(ord.size());
+  int classes = 0, coloured = 0;
+  return detail::colour_kernel(all.data(), g.words(), g.row(0), k + 1, U.data(), Q.data(),
+                               ord.data(), col.data(), &classes, &coloured) == 0;
 }
 // auto hands near-clique nodes to the cover search on sparse graphs (the correspondence graphs:
 // 3DMatch at density 0.07, omega 60, 15% more instructions without it), and on dense ones only
