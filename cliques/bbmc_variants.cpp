@@ -127,8 +127,7 @@ CoreDecomposition detail::core_decomposition(const BitGraph& g, SteadyClock::tim
   bin[0] = 0;
   // Only neighbours not removed yet can lose degree: scan row(v) & alive, which halves the visits.
   const int W = g.words();
-  std::vector<Word> alive(static_cast<std::size_t>(W), 0);
-  for (int v = 0; v < n; ++v) alive[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+  std::vector<Word> alive = detail::first_n_set(n, W);
   for (int i = 0; i < n; ++i) {
     if ((i & 255) == 255) throw_if_past(deadline);
     const int v = vert[i];
@@ -282,9 +281,8 @@ long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
 // `k` colours: then no clique has more than k vertices.
 bool colours_within(const BitGraph& g, int k) {
   const auto W = static_cast<std::size_t>(g.words());
-  std::vector<Word> all(W, 0), U(W), Q(W);
-  for (int v = 0; v < g.size(); ++v)
-    all[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+  const std::vector<Word> all = detail::first_n_set(g.size(), g.words());
+  std::vector<Word> U(W), Q(W);
   std::vector<int> ord(static_cast<std::size_t>(g.size())), col(ord.size());
   int classes = 0, coloured = 0;
   return detail::colour_kernel(all.data(), g.words(), g.row(0), k + 1, U.data(), Q.data(),
@@ -405,10 +403,11 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
                                static_cast<long long>(incumbent) * kWideLocalRatio >= sub.size();
       // Where a greedy colouring already bounds the cliques by the incumbent, it is the answer:
       // neither the local search (4,000 steps and more, 1-2 ms) nor the search runs
-      // (san200_0.9_1, hamming8-2; BENCHMARK.md, section 58).
-      const bool proved = (near_clique || wide_sparse) && colours_within(sub, incumbent);
+      // (hamming6-2, hamming8-2; BENCHMARK.md, section 58).
+      const bool searched_up_front = near_clique || wide_sparse;
+      const bool proved = searched_up_front && colours_within(sub, incumbent);
       std::vector<int> local;
-      if ((near_clique || wide_sparse) && !proved) {
+      if (searched_up_front && !proved) {
         local = local_search_clique(sub, ls, &ls_steps);
       }
       if (static_cast<int>(local.size()) > incumbent) {

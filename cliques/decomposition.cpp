@@ -80,8 +80,7 @@ class Decomposition {
   /// vertices are v's later neighbours, has at most as many vertices as 0..v use colours.
   void colour_prefixes() {
     const int n = h_.size(), W = h_.words();
-    std::vector<Word> left(static_cast<std::size_t>(W), 0), q(static_cast<std::size_t>(W));
-    for (int v = 0; v < n; ++v) left[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+    std::vector<Word> left = first_n_set(n, W), q(static_cast<std::size_t>(W));
     std::vector<int> colour(static_cast<std::size_t>(n), 0);
     for (int c = 1, first = 0; first < W; ++c) {
       q = left;

@@ -35,9 +35,7 @@ std::vector<int> colour_class_order(const BitGraph& g, int& classes,
     if ((v & 1023) == 1023) throw_if_past(deadline);
     degree[static_cast<std::size_t>(v)] = g.degree(v);
   }
-  std::vector<Word> uncoloured(static_cast<std::size_t>(W), 0), fits(uncoloured.size());
-  for (int v = 0; v < n; ++v)
-    uncoloured[static_cast<std::size_t>(v / kBits)] |= Word{1} << (v % kBits);
+  std::vector<Word> uncoloured = detail::first_n_set(n, W), fits(uncoloured.size());
   for (classes = 0; static_cast<int>(order.size()) < n; ++classes) {
     fits = uncoloured;
     for (;;) {

@@ -18,6 +18,14 @@ inline constexpr int kBits = BitGraph::kWordBits;
 
 inline int lowest_bit(Word w) { return __builtin_ctzll(w); }
 
+/// The bitset {0, ..., n - 1} in `words` words (words >= ceil(n / 64)).
+inline std::vector<Word> first_n_set(int n, int words) {
+  std::vector<Word> bits(static_cast<std::size_t>(words), 0);
+  for (int w = 0; w < n / kBits; ++w) bits[static_cast<std::size_t>(w)] = ~Word{0};
+  if (n % kBits != 0) bits[static_cast<std::size_t>(n / kBits)] = (Word{1} << (n % kBits)) - 1;
+  return bits;
+}
+
 /// Calls f(v) for every set bit of a bitset of `words` words, in increasing order.
 template <class F>
 void for_each_bit(const Word* bits, int words, F&& f) {
