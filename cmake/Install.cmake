@@ -13,7 +13,8 @@ install(FILES ${VERIFYBENCH_BUILD_INCLUDE}/verifybench/version.hpp
 install(PROGRAMS reports/plot_report.py reports/plot_loop.py reports/summarize.py reports/real_table.py
                  reports/robustness_table.py reports/check_schema.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
-install(FILES reports/report_io.py DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
+install(FILES reports/report_io.py reports/plot_style.py
+        DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
 install(FILES reports/schema/report.schema.json
         DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports/schema)
 install(EXPORT verifybenchTargets NAMESPACE verifybench::

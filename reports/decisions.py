@@ -312,8 +312,8 @@ def build_decisions(rows, solvers, count=0):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
-    import plot_report as pr_lib
-    fig, (roc, pr) = plt.subplots(1, 2, figsize=(2 * pr_lib.PANEL_W + 3.2, pr_lib.PANEL_H + 1.3),
+    import plot_style as style
+    fig, (roc, pr) = plt.subplots(1, 2, figsize=(2 * style.PANEL_W + 3.2, style.PANEL_H + 1.3),
                                   sharex=True, sharey=True)
     alphas = [10.0 ** e for e in range(-16, 0)]
     markers = "o^v<>"  # not the operating points' star and diamond
@@ -327,7 +327,7 @@ def build_decisions(rows, solvers, count=0):
     def draw(k, xs, ys, fmt, gid, label, **kw):
         drawn.append((k, xs, fmt, gid, kw))
         for ax, (x, y) in ((roc, xs), (pr, ys)):
-            tr = pr_lib.nudge(fig, ax, k, len(solvers))
+            tr = style.nudge(fig, ax, k, len(solvers))
             (line,) = ax.plot(x, y, fmt, transform=tr, label=label if ax is pr else None, **kw)
             line.set_gid(f"{'roc' if ax is roc else 'pr'}:{gid}")
 
@@ -374,7 +374,7 @@ def build_decisions(rows, solvers, count=0):
         zoom = roc.inset_axes([0.36, 0.1, 0.6, 0.55])
         zoom.set_gid("roc_zoom")
         for k, xs, fmt, gid, kw in drawn:
-            (line,) = zoom.plot(*xs, fmt, transform=pr_lib.nudge(fig, zoom, k, len(solvers)), **kw)
+            (line,) = zoom.plot(*xs, fmt, transform=style.nudge(fig, zoom, k, len(solvers)), **kw)
             line.set_gid(f"zoom:{gid}")
         right = max(0.05, 1.5 * max(x for x, _ in ops))
         bottom = max(-0.02, min(y for _, y in ops) - 0.15)
@@ -386,7 +386,7 @@ def build_decisions(rows, solvers, count=0):
         roc.indicate_inset_zoom(zoom, edgecolor="0.4")
     handles, labels = pr.get_legend_handles_labels()
     handles.append(Line2D([], [], linestyle="none"))
-    labels.append(f"star / diamond: operating points;\nsolvers drawn {pr_lib.OFFSET_PT:g} pt apart "
+    labels.append(f"star / diamond: operating points;\nsolvers drawn {style.OFFSET_PT:g} pt apart "
                   "so equal curves stay visible")
     pr.legend(handles, labels, fontsize=7, loc="upper left", bbox_to_anchor=(1.03, 1.0),
               borderaxespad=0.0)

@@ -31,7 +31,7 @@ import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import plot_report as common  # noqa: E402
+import plot_style as common  # noqa: E402
 
 MIN_EDGE = 0.03  # the smallest drawn loop edge, as a fraction of the trajectory's extent
 EDGE_COLOUR = {True: "tab:green", False: "tab:red"}
