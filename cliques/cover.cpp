@@ -149,18 +149,41 @@ class DoubleCoverMatching {
     s_.mate_l[static_cast<std::size_t>(u)] = v;
     s_.mate_r[static_cast<std::size_t>(v)] = u;
   }
-  bool augment(int u) {
+  // Kuhn's depth-first search from the unmatched u_L, on an explicit stack (a path can hold every
+  // member: tens of thousands of calls deep on large near-cliques, past a thread's stack). Each
+  // level scans its left vertex's free right neighbours in order from the word it stopped at;
+  // via_[i] is the right vertex level i went through to reach level i + 1.
+  bool augment(int root) {
     Word* visited = s_.visited.data();
-    for (int w = 0; w < W_; ++w) {
-      for (Word x = h_word(u, w) & ~visited[w]; x; x = h_word(u, w) & ~visited[w]) {
-        const int v = w * kBits + lowest_bit(x);
-        visited[w] |= Word{1} << (v % kBits);
-        const int m = s_.mate_r[static_cast<std::size_t>(v)];
-        if (m < 0 || augment(m)) {
-          match(u, v);
-          return true;
+    path_.assign(1, root);
+    at_.assign(1, 0);
+    via_.clear();
+    while (!path_.empty()) {
+      const int u = path_.back();
+      int& w = at_.back();
+      int v = -1;
+      for (; w < W_; ++w) {
+        if (const Word x = h_word(u, w) & ~visited[w]) {
+          v = w * kBits + lowest_bit(x);
+          break;
         }
       }
+      if (v < 0) {  // no way on from u: back to the level before, which goes on scanning
+        path_.pop_back();
+        at_.pop_back();
+        if (!via_.empty()) via_.pop_back();
+        continue;
+      }
+      visited[w] |= Word{1} << (v % kBits);
+      const int m = s_.mate_r[static_cast<std::size_t>(v)];
+      if (m < 0) {  // v is free: every level takes the right vertex it went through
+        via_.push_back(v);
+        for (std::size_t i = 0; i < path_.size(); ++i) match(path_[i], via_[i]);
+        return true;
+      }
+      via_.push_back(v);
+      path_.push_back(m);
+      at_.push_back(0);
     }
     return false;
   }
@@ -171,6 +194,7 @@ class DoubleCoverMatching {
   const int W_;
   LpMatching& s_;
   int size_ = 0;
+  std::vector<int> path_, at_, via_;  // augment()'s stack
 };
 
 }  // namespace

@@ -2,7 +2,9 @@
 // through it on dense graphs that are not regular, BBMCX's on regular ones
 // (cliques/bbmc_variants.cpp).
 #include <gtest/gtest.h>
+#include <pthread.h>
 
+#include <cstdlib>
 #include <random>
 
 #include "clique_oracles.hpp"
@@ -268,6 +270,74 @@ TEST(Decomposition, TheLpBoundOnMembersFromAKeptMatchingMatchesBruteForce) {
     std::fill(mask.begin(), mask.end(), 0);
   }
   EXPECT_GT(ruled_out, 0);
+}
+
+TEST(Decomposition, TheLpBoundFollowsAnAugmentingPathAsLongAsTheGraphOnASmallStack) {
+  // G is the complement of the path 0 - 1 - ... - n-1 (omega n / 2). The kept matching pairs
+  // 2i_L with (2i-1)_R and (2i-1)_L with 2i_R, so 0_L and (n-1)_L have no free neighbour and
+  // the only augmenting path runs 0_L, 1_R, 2_L, 3_R, ... to (n-1)_R: n / 2 levels. Run on a
+  // 256 KB thread stack, a recursive search of that path overflows it; the LP bound must then
+  // rule out n / 2 (the double cover's perfect matching) and leave a matching of H.
+  using detail::kBits;
+  using detail::Word;
+  const int n = 20'000;
+  BitGraph g(n);
+  for (int u = 0; u < n; ++u) {
+    Word* row = g.row(u);
+    for (int w = 0; w < g.words(); ++w) row[w] = ~Word{0};
+    for (int v : {u - 1, u, u + 1}) {
+      if (v >= 0 && v < n) row[v / kBits] &= ~(Word{1} << (v % kBits));
+    }
+    if (n % kBits != 0) row[n / kBits] &= (Word{1} << (n % kBits)) - 1;
+  }
+  std::vector<int> members(static_cast<std::size_t>(n));
+  for (int v = 0; v < n; ++v) members[static_cast<std::size_t>(v)] = v;
+  const std::vector<Word> valid = detail::first_n_set(n, g.words());
+  detail::LpMatching state;
+  state.mate_l.assign(static_cast<std::size_t>(n), -1);
+  state.mate_r.assign(static_cast<std::size_t>(n), -1);
+  for (int u = 1; u + 1 < n; ++u) {  // u_L with (u - 1)_R when u is even, (u + 1)_R when odd
+    const int v = u % 2 == 0 ? u - 1 : u + 1;
+    state.mate_l[static_cast<std::size_t>(u)] = v;
+    state.mate_r[static_cast<std::size_t>(v)] = u;
+  }
+  struct Call {
+    const BitGraph* g;
+    const std::vector<int>* members;
+    const Word* valid;
+    detail::LpMatching* state;
+    bool out = false;
+  } call{&g, &members, valid.data(), &state};
+  pthread_attr_t attr;
+  ASSERT_EQ(pthread_attr_init(&attr), 0);
+  ASSERT_EQ(pthread_attr_setstacksize(&attr, 256 * 1024), 0);
+  pthread_t thread;
+  ASSERT_EQ(pthread_create(
+                &thread, &attr,
+                [](void* arg) -> void* {
+                  auto* c = static_cast<Call*>(arg);
+                  c->out = detail::lp_rules_out(*c->g, *c->members, c->valid, c->g->words(),
+                                                static_cast<int>(c->members->size()) / 2, *c->state);
+                  return nullptr;
+                },
+                &call),
+            0);
+  ASSERT_EQ(pthread_join(thread, nullptr), 0);
+  pthread_attr_destroy(&attr);
+  EXPECT_TRUE(call.out);
+  EXPECT_FALSE(detail::lp_rules_out(g, n / 2 - 1));
+  // The matching left is one of H's double cover: every pair an edge of the path, seen from
+  // both ends, and the path's first vertex is matched now (through the long path).
+  int pairs = 0;
+  for (int u = 0; u < n; ++u) {
+    const int v = state.mate_l[static_cast<std::size_t>(u)];
+    if (v < 0) continue;
+    ++pairs;
+    ASSERT_EQ(std::abs(u - v), 1) << u;
+    ASSERT_EQ(state.mate_r[static_cast<std::size_t>(v)], u) << u;
+  }
+  EXPECT_EQ(state.mate_l[0], 1);
+  EXPECT_GE(pairs, n - 1);
 }
 
 TEST(Decomposition, WithTheCoverSearchInEachNeighbourhoodMatchesBruteForce) {
