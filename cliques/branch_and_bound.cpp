@@ -190,13 +190,8 @@ bool BranchAndBound::near_clique(const Word* P, int needed) const {
 }
 
 void BranchAndBound::consult_helper() {
-  const long long goal =
-      helper_initial_ + static_cast<long long>(helper_share_ * static_cast<double>(work_));
-  if (goal <= helper_->work() ||
-      !helper_->run_until(std::numeric_limits<long long>::max(), goal, budget_.deadline)) {
-    return;
-  }
-  if (static_cast<int>(helper_->best().size()) > best_size_) {
+  if (helper_->keep_pace(helper_initial_, helper_share_, work_,
+                         static_cast<std::size_t>(best_size_), budget_.deadline)) {
     best_ = helper_->best();
     best_size_ = static_cast<int>(best_.size());
   }

@@ -227,14 +227,11 @@ std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budge
   std::vector<int> best;
   long long work = 0;
   for (int v = 0; v < dec.size() && !budget.stopped; ++v) {
-    if (LocalSearch* ls = helper.search) {
-      const long long goal =
-          helper.initial_work + static_cast<long long>(helper.share * static_cast<double>(work));
-      if (goal > ls->work() &&
-          ls->run_until(std::numeric_limits<long long>::max(), goal, budget.deadline) &&
-          ls->best().size() > std::max(best.size(), static_cast<std::size_t>(incumbent))) {
-        best = ls->best();
-      }
+    LocalSearch* ls = helper.search;
+    if (ls && ls->keep_pace(helper.initial_work, helper.share, work,
+                            std::max(best.size(), static_cast<std::size_t>(incumbent)),
+                            budget.deadline)) {
+      best = ls->best();
     }
     const int size = std::max(incumbent, static_cast<int>(best.size()));
     std::vector<int> found = dec.solve(v, size, budget, scratch, search, options, &work);

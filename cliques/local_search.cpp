@@ -135,6 +135,13 @@ int LocalSearch::pick(int misses) {
 
 long long LocalSearch::work() const { return picked_ + state_->visits(); }
 
+bool LocalSearch::keep_pace(long long initial, double share, long long search_work,
+                            std::size_t size, const SteadyClock::time_point& deadline) {
+  const long long goal = initial + static_cast<long long>(share * static_cast<double>(search_work));
+  return goal > work() && run_until(std::numeric_limits<long long>::max(), goal, deadline) &&
+         best_.size() > size;
+}
+
 bool LocalSearch::run_until(long long step_goal, long long work_goal,
                             const SteadyClock::time_point& deadline) {
   if (n_ == 0) return false;

@@ -19,6 +19,11 @@ class LocalSearch {
   /// Runs until steps() reaches `step_goal` or work() reaches `work_goal`, the target size is met
   /// or the deadline passes; true when it found a larger clique.
   bool run_until(long long step_goal, long long work_goal, const SteadyClock::time_point& deadline);
+  /// An exact search's interleaving (BBMCX's, the decomposition's): runs until work() reaches
+  /// `initial` plus `share` of the search's own `search_work`; true when it then holds a clique
+  /// larger than `size`.
+  bool keep_pace(long long initial, double share, long long search_work, std::size_t size,
+                 const SteadyClock::time_point& deadline);
   const std::vector<int>& best() const { return best_; }  ///< in the order met, not sorted
   long long steps() const { return steps_; }              ///< additions, swaps and restarts
   /// Vertices scanned and words read so far: what a step costs grows with n and with the share of
