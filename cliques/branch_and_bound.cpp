@@ -190,8 +190,7 @@ bool BranchAndBound::near_clique(const Word* P, int needed) const {
 }
 
 void BranchAndBound::consult_helper() {
-  if (helper_->keep_pace(helper_initial_, helper_share_, work_,
-                         static_cast<std::size_t>(best_size_), budget_.deadline)) {
+  if (helper_->keep_pace(helper_initial_, helper_share_, work_, best_size_, budget_.deadline)) {
     best_ = helper_->best();
     best_size_ = static_cast<int>(best_.size());
   }

@@ -151,7 +151,7 @@ class DoubleCoverMatching {
   }
   // Kuhn's depth-first search from the unmatched u_L, on an explicit stack (a path can hold every
   // member: tens of thousands of calls deep on large near-cliques, past a thread's stack). Each
-  // level scans its left vertex's free right neighbours in order from the word it stopped at;
+  // level scans its left vertex's unvisited right neighbours in order from the word it stopped at;
   // via_[i] is the right vertex level i went through to reach level i + 1.
   bool augment(int root) {
     Word* visited = s_.visited.data();

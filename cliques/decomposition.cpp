@@ -229,8 +229,7 @@ std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budge
   for (int v = 0; v < dec.size() && !budget.stopped; ++v) {
     LocalSearch* ls = helper.search;
     if (ls && ls->keep_pace(helper.initial_work, helper.share, work,
-                            std::max(best.size(), static_cast<std::size_t>(incumbent)),
-                            budget.deadline)) {
+                            std::max(static_cast<int>(best.size()), incumbent), budget.deadline)) {
       best = ls->best();
     }
     const int size = std::max(incumbent, static_cast<int>(best.size()));

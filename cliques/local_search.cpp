@@ -135,11 +135,11 @@ int LocalSearch::pick(int misses) {
 
 long long LocalSearch::work() const { return picked_ + state_->visits(); }
 
-bool LocalSearch::keep_pace(long long initial, double share, long long search_work,
-                            std::size_t size, const SteadyClock::time_point& deadline) {
+bool LocalSearch::keep_pace(long long initial, double share, long long search_work, int size,
+                            const SteadyClock::time_point& deadline) {
   const long long goal = initial + static_cast<long long>(share * static_cast<double>(search_work));
   return goal > work() && run_until(std::numeric_limits<long long>::max(), goal, deadline) &&
-         best_.size() > size;
+         static_cast<int>(best_.size()) > size;
 }
 
 bool LocalSearch::run_until(long long step_goal, long long work_goal,

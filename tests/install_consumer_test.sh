@@ -17,10 +17,18 @@ if grep -rl -e "$src" -e "$build" "$work/moved/lib/cmake" >/dev/null; then
   echo "the exported package names the source or build tree:" >&2
   grep -rl -e "$src" -e "$build" "$work/moved/lib/cmake" >&2; exit 1
 fi
-# Every installed report script starts from the moved prefix: the modules it imports came with it.
-for script in "$work"/moved/share/verifybench/reports/*.py; do
-  /usr/bin/python3 "$script" --help >/dev/null 2>"$work/script.err" || {
-    echo "installed $(basename "$script") does not start:" >&2; cat "$work/script.err" >&2; exit 1; }
+# Every installed report script starts from the moved prefix (the modules it imports came with
+# it): the programs print their usage, the modules import.
+reports="$work/moved/share/verifybench/reports"
+for script in "$reports"/*.py; do
+  name=$(basename "$script" .py)
+  if [ -x "$script" ]; then
+    /usr/bin/python3 -B "$script" --help >"$work/script.out" 2>"$work/script.err" &&
+      grep -q "usage:" "$work/script.out"
+  else
+    /usr/bin/python3 -B -c "import sys; sys.path.insert(0, sys.argv[1]); import $name" "$reports" \
+      >"$work/script.out" 2>"$work/script.err"
+  fi || { echo "installed $name.py does not start:" >&2; cat "$work/script.err" >&2; exit 1; }
 done
 cmake -S "$src/tests/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$work/moved" \
       -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -22,7 +22,7 @@ class LocalSearch {
   /// An exact search's interleaving (BBMCX's, the decomposition's): runs until work() reaches
   /// `initial` plus `share` of the search's own `search_work`; true when it then holds a clique
   /// larger than `size`.
-  bool keep_pace(long long initial, double share, long long search_work, std::size_t size,
+  bool keep_pace(long long initial, double share, long long search_work, int size,
                  const SteadyClock::time_point& deadline);
   const std::vector<int>& best() const { return best_; }  ///< in the order met, not sorted
   long long steps() const { return steps_; }              ///< additions, swaps and restarts
