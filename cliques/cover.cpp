@@ -175,13 +175,12 @@ class DoubleCoverMatching {
         continue;
       }
       visited[w] |= Word{1} << (v % kBits);
+      via_.push_back(v);
       const int m = s_.mate_r[static_cast<std::size_t>(v)];
       if (m < 0) {  // v is free: every level takes the right vertex it went through
-        via_.push_back(v);
         for (std::size_t i = 0; i < path_.size(); ++i) match(path_[i], via_[i]);
         return true;
       }
-      via_.push_back(v);
       path_.push_back(m);
       at_.push_back(0);
     }
