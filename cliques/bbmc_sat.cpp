@@ -470,8 +470,16 @@ int SatBranchAndBound::filter(int depth, int count, int low) {
   return kept;
 }
 
+void SatBranchAndBound::consult_helper() {
+  if (helper_->keep_pace(helper_initial_, helper_share_, work_, best_size_, budget_.deadline)) {
+    best_ = helper_->best();
+    best_size_ = static_cast<int>(best_.size());
+  }
+}
+
 void SatBranchAndBound::expand(int depth) {
   if (!budget_.spend()) return;
+  if (helper_ && (budget_.nodes & 1023) == 1) consult_helper();
   auto& next_level = levels_[static_cast<std::size_t>(depth) + 1];
   if (next_level.empty()) next_level.assign(static_cast<std::size_t>(W_), 0);
   Word* P = levels_[static_cast<std::size_t>(depth)].data();

@@ -299,6 +299,11 @@ constexpr double kDenseGraph = 0.5;
 // costs 0.66-1.03x what BBMCX does at p = 0.85-0.875 (C125.9, 0.90: 0.63x) and 1.2-1.5x at
 // 0.75-0.8 (BENCHMARK.md, section 45). Correspondence graphs are far sparser.
 constexpr double kMaxSatDensity = 0.85;
+// There the interleaved local search takes this share of the colouring's words: at a tenth (the
+// other paths' kLocalShare) the MaxSAT search, whose nodes cost more than their colouring says,
+// spends 4-5% more where the search up front already holds omega; at a twentieth 0-3%.
+constexpr double kDenseLocalShare = 0.05;
+constexpr std::uint64_t kInterleavedStream = 1;
 // On dense graphs the MaxSAT test goes without Re-NUMBER and failed literals (sat_bb.hpp); from
 // kMaxSatDensity it relaxes the inconsistent subsets it finds rather than freezing them, which
 // the decomposition's sparser neighbourhoods do not repay (BENCHMARK.md, section 56).
@@ -437,8 +442,20 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         if (hands_off_near_cliques(dens, incumbent)) {
           bb.hand_off_near_cliques(BranchAndBound::kMinCover);
         }
+        // The local search up front misses omega on some of these graphs (G(200, 0.9) s1 holds 39
+        // of 40 until 2 s into a 5 s search): a second one, on its own stream, runs interleaved
+        // at a twentieth of the colouring's words (gnp200_0.9_s1 923,255 -> 717,504 nodes;
+        // BENCHMARK.md, section 61).
+        LocalSearchParams interleaved = ls;
+        interleaved.max_steps = LocalSearchParams{}.max_steps;
+        interleaved.target = upper;
+        interleaved.seed = derive_seed(params.seed, {kLocalSearchStream, kInterleavedStream});
+        LocalSearch helper(sub, interleaved);
+        bb.interleave(&helper, kLocalInitialVisitsPerVertex * sub.size(), kDenseLocalShare);
         bb.run();
         found = bb.best();
+        ls_steps += helper.steps();
+        ls_steps += helper.steps();
       } else if (!near_clique && decomposes(g, dens)) {
         LocalSearchParams interleaved = ls;
         interleaved.max_steps = LocalSearchParams{}.max_steps;
@@ -592,7 +609,7 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it "
-                           "(bbmcx-sat from density 0.85; from 0.5, or 0.45 where the degrees "
+                           "(bbmcx-sat with a local search interleaved from density 0.85; from 0.5, or 0.45 where the degrees "
                            "spread twice a random graph's, bbmc-dec's neighbourhoods "
                            "with the MaxSAT bound and bbmcx-ls's local search between them, on "
                            "regular graphs BBMCX with that local search interleaved; the "

@@ -786,6 +786,37 @@ TEST(MaxSatBound, RelaxedSubsetsKeepTheCliqueNumberOnDenseGraphs) {
   EXPECT_GT(relaxed, 0) << "no subset was relaxed";
 }
 
+TEST(MaxSatBound, TakesTheInterleavedLocalSearchsCliqueAsItsIncumbent) {
+  // With a node limit of two the search alone ends inside its root; the local search interleaved
+  // there (its turn comes at the first node) reaches omega (brute force), and that clique is what
+  // the search reports, larger than what the search alone finds on some of the graphs.
+  std::mt19937_64 rng(32010);
+  int short_alone = 0;
+  for (int rep = 0; rep < 12; ++rep) {
+    const int n = 30 + rep;
+    const double density = 0.85 + 0.1 * static_cast<double>(rep % 4) / 3.0;
+    const BitGraph g = test::random_graph(n, density, rng);
+    const int omega = test::brute_force_clique_number(g);
+    CliqueSearchParams limited;
+    limited.node_limit = 2;
+    detail::SearchBudget alone_budget = detail::make_budget(limited);
+    detail::SatBranchAndBound alone(g, 0, alone_budget, detail::SatOptions{false, false, true});
+    alone.run();
+    short_alone += static_cast<int>(alone.best().size()) < omega;
+
+    LocalSearchParams lp;
+    lp.seed = 7 + static_cast<std::uint64_t>(rep);
+    LocalSearch helper(g, lp);
+    detail::SearchBudget budget = detail::make_budget(limited);
+    detail::SatBranchAndBound bb(g, 0, budget, detail::SatOptions{false, false, true});
+    bb.interleave(&helper, 1000LL * n, 0.05);
+    bb.run();
+    ASSERT_EQ(static_cast<int>(bb.best().size()), omega) << "rep " << rep;
+    ASSERT_TRUE(g.is_clique(bb.best())) << "rep " << rep;
+  }
+  EXPECT_GT(short_alone, 0) << "the search alone reached omega everywhere: the helper was not needed";
+}
+
 TEST(MaxSatBound, MatchesKnownDimacsCliqueNumbers) {
   const std::filesystem::path dir = std::filesystem::path(VERIFYBENCH_SHARED_DATA) / "dimacs";
   if (!std::filesystem::exists(dir / "MANIFEST.tsv")) GTEST_SKIP() << "shared data absent";

@@ -46,6 +46,7 @@
 #include <vector>
 
 #include "cliques/detail/bbmc.hpp"
+#include "cliques/detail/local_search.hpp"
 
 namespace verifybench::detail {
 
@@ -87,8 +88,18 @@ class SatBranchAndBound {
   /// BranchAndBound::hand_off_near_cliques() does, when it needs at least `min_needed` vertices.
   void hand_off_near_cliques(int min_needed) { cover_min_ = min_needed; }
 
+  /// Runs `search` (a local search on g) interleaved, as BranchAndBound::interleave() does: every
+  /// 1,024 nodes it catches up to `initial_work` plus `share` of the colouring's words, and a
+  /// larger clique it finds becomes the incumbent.
+  void interleave(LocalSearch* search, long long initial_work, double share) {
+    helper_ = search;
+    helper_initial_ = initial_work;
+    helper_share_ = share;
+  }
+
  private:
   void expand(int depth);
+  void consult_helper();  // the interleaved local search's turn (interleave())
   int colour(const Word* P, int depth, int kmin);
   int filter(int depth, int count, int low);  // the MaxSAT step; returns |B|
   bool test(int v, int low);  // true when v leaves B (joined, re-numbered or in a conflict)
@@ -127,6 +138,9 @@ class SatBranchAndBound {
   int best_size_;
   SearchBudget& budget_;
   int cover_min_ = 0;  // 0 = no hand-off
+  LocalSearch* helper_ = nullptr;
+  long long helper_initial_ = 0;
+  double helper_share_ = 0;
   SatOptions options_;
   long long absorbed_ = 0;
   long long relaxed_ = 0;
