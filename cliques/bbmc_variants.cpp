@@ -442,10 +442,10 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         if (hands_off_near_cliques(dens, incumbent)) {
           bb.hand_off_near_cliques(BranchAndBound::kMinCover);
         }
-        // The local search up front misses omega on some of these graphs (G(200, 0.9) s1 holds 39
-        // of 40 until 2 s into a 5 s search): a second one, on its own stream, runs interleaved
-        // at a twentieth of the colouring's words (gnp200_0.9_s1 923,255 -> 717,504 nodes;
-        // BENCHMARK.md, section 61).
+        // The local search up front (on near-cliques) misses omega on some of these graphs
+        // (G(200, 0.9) s1 holds 39 of 40 until 2 s into a 5 s search): one on a stream of its own
+        // runs interleaved at a twentieth of the colouring's words (gnp200_0.9_s1 923,255 ->
+        // 717,504 nodes; BENCHMARK.md, section 61); on the other graphs it is the only one.
         LocalSearchParams interleaved = ls;
         interleaved.max_steps = LocalSearchParams{}.max_steps;
         interleaved.target = upper;
@@ -454,7 +454,6 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         bb.interleave(&helper, kLocalInitialVisitsPerVertex * sub.size(), kDenseLocalShare);
         bb.run();
         found = bb.best();
-        ls_steps += helper.steps();
         ls_steps += helper.steps();
       } else if (!near_clique && decomposes(g, dens)) {
         LocalSearchParams interleaved = ls;
@@ -609,7 +608,8 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it "
-                           "(bbmcx-sat with a local search interleaved from density 0.85; from 0.5, or 0.45 where the degrees "
+                           "(bbmcx-sat with a local search interleaved from density 0.85; "
+                           "from 0.5, or 0.45 where the degrees "
                            "spread twice a random graph's, bbmc-dec's neighbourhoods "
                            "with the MaxSAT bound and bbmcx-ls's local search between them, on "
                            "regular graphs BBMCX with that local search interleaved; the "
