@@ -11,7 +11,8 @@ endforeach()
 install(FILES ${VERIFYBENCH_BUILD_INCLUDE}/verifybench/version.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/verifybench)
 install(PROGRAMS reports/plot_report.py reports/plot_loop.py reports/summarize.py reports/real_table.py
-                 reports/robustness_table.py reports/check_schema.py
+                 reports/robustness_table.py reports/check_schema.py reports/decisions.py
+                 reports/separation.py reports/clique_table.py reports/peers_table.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)
 install(FILES reports/report_io.py reports/plot_style.py
         DESTINATION ${CMAKE_INSTALL_DATADIR}/verifybench/reports)

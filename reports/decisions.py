@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """Scores accept decisions over one or more reports (issue #13): per solver, TP / FP / TN / FN,
 precision, recall and F1 under the calibrated rule the reports ran with (accepted, p < alpha) and
 under the paper's fixed count (inliers >= K; K = 5 in 3D, 10 in 2D unless --count), with the

@@ -1,3 +1,4 @@
+#!/usr/bin/python3
 """How well each statistic in the report rows separates good verifications from bad ones (issue #31,
 item 1: measure before choosing an accept test). Reads `verifybench run` / `sweep` reports (rows
 with an expected decision) and `verifybench loop` reports (every candidate row).
