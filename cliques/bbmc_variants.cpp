@@ -350,6 +350,14 @@ constexpr double kIrregular = 0.5;
 constexpr double kDispersedDensity = 0.2;
 constexpr double kDispersed = 2.0;
 constexpr long long kDispersedWordsPerNode = 20'000;
+// Under kDispersedDensity the same hand-off comes after decompose_after_words /
+// kSparseDispersedWordsPerNode nodes (5,000 by default) where the degrees spread that wide: the
+// correspondence graphs of real scans (dispersion 2.5-31). After that many row words instead, a
+// node's cost was misjudged where it colours thousands of candidates or runs the cover search
+// (balm_realworld's FPFH k1 dumps: 500,000 nodes, 30-45 s, before the hand-off; the
+// decomposition then proves them in 0.1-1.5 s), while the corpus's searches that BBMCX ends
+// take at most 4,700 nodes there (corr_6614, the B-SHOT dumps; BENCHMARK.md, section 62).
+constexpr long long kSparseDispersedWordsPerNode = 8'000;
 // From this density up, dispersed graphs take the dense graphs' path (the decomposition at once,
 // the interleaved local search, the dense MaxSAT options): the p_hat scheme's graphs of density
 // 0.49-0.5 (p_hat300-2, p_hat700-2 and p_hat1000-2 are 0.49-0.50) 0.66-0.77x the time of the
@@ -486,15 +494,17 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         }
         const bool sparse = dens < kDenseGraph && params.decompose_after_words > 0 &&
                             static_cast<long long>(incumbent) * kNearCliqueRatio < sub.size();
-        const bool dispersed =
-            sparse && dens >= kDispersedDensity && degree_dispersion(g) >= kDispersed;
+        const bool dispersed = sparse && degree_dispersion(g) >= kDispersed;
         const bool wide = near_clique && params.decompose_after_words > 0 &&
                           hands_off_near_cliques(dens, incumbent) && 2LL * incumbent < sub.size();
+        // What a node counts for against decompose_after_words: the pruned graph's row words, or
+        // a fixed share where the degrees spread wide (the p_hat scheme's, the scans').
+        const long long words_per_node = !dispersed                   ? sub.words()
+                                         : dens >= kDispersedDensity ? kDispersedWordsPerNode
+                                                                     : kSparseDispersedWordsPerNode;
         const long long own_limit =
-            budget.nodes +
-            (wide ? kWideNearCliqueNodes
-                  : std::max(1LL, params.decompose_after_words /
-                                      (dispersed ? kDispersedWordsPerNode : sub.words())));
+            budget.nodes + (wide ? kWideNearCliqueNodes
+                                 : std::max(1LL, params.decompose_after_words / words_per_node));
         const long long user_limit = budget.node_limit;
         if ((sparse || wide) && (user_limit == 0 || own_limit < user_limit)) {
           budget.node_limit = own_limit;

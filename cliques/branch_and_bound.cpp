@@ -25,9 +25,11 @@ int BranchAndBound::colour(const Word* P, int depth, int kmin) {
     }
     // The pass reads up to low classes x words per vertex past the bound: past kMaxInfraWords
     // (an incumbent of hundreds in rows of hundreds of words: planted cliques of thousands),
-    // it costs more than the branches it saves, so such nodes colour without it.
+    // it costs more than the branches it saves, so such nodes colour without it; likewise past
+    // kMaxInfraPairWords of low classes squared times words (what one vertex can cost).
+    const long long low = kmin - 1;
     const int low_classes =
-        infra_ && static_cast<long long>(kmin - 1) * W_ <= kMaxInfraWords ? kmin - 1 : 0;
+        infra_ && low * W_ <= kMaxInfraWords && low * low * W_ <= kMaxInfraPairWords ? kmin - 1 : 0;
     if (low_classes > 0) {
       classes_.assign(static_cast<std::size_t>(low_classes) * W_, 0);
       frozen_.assign(static_cast<std::size_t>(low_classes), 0);

@@ -10,8 +10,8 @@
 #include "clique_oracles.hpp"
 #include "cliques/detail/cover.hpp"
 #include "cliques/detail/decomposition.hpp"
-#include "graph/planted.hpp"
 #include "cliques/max_clique.hpp"
+#include "graph/planted.hpp"
 #include "test_util.hpp"
 
 namespace verifybench {
@@ -105,6 +105,40 @@ TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
     }
   }
   EXPECT_GE(dispersed_handed, graphs - 1) << "the dispersed graphs were not handed over";
+  EXPECT_EQ(random_handed, 0) << "G(n, p) was handed over";
+}
+
+TEST(Decomposition, AutoHandsSparseDispersedGraphsToTheDecompositionAfterFewNodes) {
+  // Under density 0.2, where the degrees spread as the correspondence graphs' do, BBMCX hands the
+  // search over after decompose_after_words / 8,000 nodes (here 10), and G(n, p) of that density
+  // after decompose_after_words / words (here 10,000 and more: never on these). The hand-off shows
+  // as a different node count from the same search without it; both ways against BBMC.
+  register_clique_algorithms();
+  std::mt19937_64 rng(62001);
+  CliqueSearchParams soon, never;
+  soon.decompose_after_words = 80'000;
+  never.decompose_after_words = 0;
+  int dispersed_handed = 0, random_handed = 0, graphs = 0;
+  for (int n : {500, 700}) {
+    for (double density : {0.08, 0.12, 0.16}) {
+      const std::string what = "n=" + std::to_string(n) + " density=" + std::to_string(density);
+      const BitGraph dispersed = vertex_density_graph(n, 0.0, 2 * density, rng);
+      const BitGraph random = test::random_graph(n, density, rng);
+      for (const BitGraph* g : {&dispersed, &random}) {
+        const std::string which = (g == &dispersed ? "dispersed " : "G(n, p) ") + what;
+        const auto oracle = CliqueAlgorithms::get("bbmc").run(*g, {});
+        const auto a = CliqueAlgorithms::get("auto").run(*g, soon);
+        const auto b = CliqueAlgorithms::get("auto").run(*g, never);
+        ASSERT_TRUE(a.optimal && b.optimal && oracle.optimal) << which;
+        EXPECT_TRUE(g->is_clique(a.clique) && g->is_clique(b.clique)) << which;
+        EXPECT_EQ(a.clique.size(), oracle.clique.size()) << which;
+        EXPECT_EQ(b.clique.size(), oracle.clique.size()) << which;
+        (g == &dispersed ? dispersed_handed : random_handed) += a.nodes != b.nodes;
+      }
+      ++graphs;
+    }
+  }
+  EXPECT_GE(dispersed_handed, graphs - 1) << "the sparse dispersed graphs were not handed over";
   EXPECT_EQ(random_handed, 0) << "G(n, p) was handed over";
 }
 
@@ -317,8 +351,9 @@ TEST(Decomposition, TheLpBoundFollowsAnAugmentingPathAsLongAsTheGraphOnASmallSta
                 &thread, &attr,
                 [](void* arg) -> void* {
                   auto* c = static_cast<Call*>(arg);
-                  c->out = detail::lp_rules_out(*c->g, *c->members, c->valid, c->g->words(),
-                                                static_cast<int>(c->members->size()) / 2, *c->state);
+                  c->out =
+                      detail::lp_rules_out(*c->g, *c->members, c->valid, c->g->words(),
+                                           static_cast<int>(c->members->size()) / 2, *c->state);
                   return nullptr;
                 },
                 &call),
@@ -355,8 +390,7 @@ TEST(Decomposition, WithTheCoverSearchInEachNeighbourhoodMatchesBruteForce) {
       ASSERT_EQ(static_cast<int>(found.size()), omega) << "rep " << rep << " from " << from;
       ASSERT_TRUE(g.is_clique(found)) << "rep " << rep;
     }
-    ASSERT_TRUE(
-        detail::decompose(g, omega, budget, {}, {}, detail::Neighbourhood::kCover).empty())
+    ASSERT_TRUE(detail::decompose(g, omega, budget, {}, {}, detail::Neighbourhood::kCover).empty())
         << "rep " << rep;
     EXPECT_FALSE(budget.stopped);
   }
@@ -378,8 +412,8 @@ TEST(Decomposition, AutoProvesNearCliquesWhoseCliqueIsUnderHalfThePrunedGraph) {
   with.time_limit_s = without.time_limit_s = 120;  // a safety net, not a timing assertion
   without.decompose_after_words = 0;
   int handed = 0;
-  for (const Case c : {Case{120, 0.5}, Case{160, 0.3}, Case{200, 0.2}, Case{240, 0.2},
-                       Case{300, 0.15}}) {
+  for (const Case c :
+       {Case{120, 0.5}, Case{160, 0.3}, Case{200, 0.2}, Case{240, 0.2}, Case{300, 0.15}}) {
     const PlantedGraph nc = block_near_clique(c.k, 2000, 24, c.density, 51003 + c.k);
     ASSERT_LT(2 * nc.omega, c.k) << c.k;
     ASSERT_GT(8 * nc.omega, c.k) << c.k;

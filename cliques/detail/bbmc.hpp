@@ -171,6 +171,11 @@ class BranchAndBound {
   // under kCompactWords words (p_hat1000-1, 16 words, is slower packed: its subtrees are small).
   static constexpr int kCompactWords = 32;
   static constexpr long long kMaxInfraWords = 4096;
+  // A vertex's pass can also try, for each class where it has one neighbour, every other class:
+  // low classes squared times words. Past this the node colours without the pass (a sparse
+  // correspondence graph with cliques of 300+ in packed rows of a few words: 72-80% of BBMCX's
+  // time there, each failed vertex 10^5-10^6 words; BENCHMARK.md, section 62).
+  static constexpr long long kMaxInfraPairWords = 1LL << 18;
   static constexpr int kMaxFailures = 16;
   static constexpr int kSparse = 8;
   bool worth_packing(int candidates) const {
