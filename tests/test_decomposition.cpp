@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 #include <pthread.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "clique_oracles.hpp"
 #include "cliques/detail/cover.hpp"
@@ -73,16 +76,19 @@ TEST(Decomposition, AutoOnDenseGraphsWithDispersedDegreesMatchesTheOracle) {
   }
 }
 
-TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
-  // Density 0.25-0.42, no near-clique: where each vertex draws its own density (degrees spread 3-5
-  // times a random graph's) BBMCX hands the search to the decomposition after
-  // decompose_after_words / 20,000 nodes (here 5), on G(n, p) after decompose_after_words / words
-  // (here 10,000 and more: never on these). The hand-off shows as a different node count from the
-  // same search without it (decompose_after_words 0); both ways against the oracles.
+// For each n and density, a graph whose vertices draw their own density in [0, 2 x density] and a
+// G(n, p): `auto` with the hand-off after `after_words` and without it (decompose_after_words 0),
+// both against BBMC; a hand-off shows as a different node count. Returns how many of each kind
+// were handed over, and the graphs of each kind.
+struct HandOffs {
+  int dispersed = 0, random = 0, graphs = 0;
+};
+HandOffs count_hand_offs(const std::vector<int>& sizes, const std::vector<double>& densities,
+                         long long after_words, std::uint64_t seed) {
   register_clique_algorithms();
-  std::mt19937_64 rng(50001);
+  std::mt19937_64 rng(seed);
   CliqueSearchParams soon, never;
-  soon.decompose_after_words = 100'000;
+  soon.decompose_after_words = after_words;
   never.decompose_after_words = 0;
   auto handed = [&](const BitGraph& g, const std::string& what) {
     const auto oracle = CliqueAlgorithms::get("bbmc").run(g, {});
@@ -94,52 +100,35 @@ TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
     EXPECT_EQ(b.clique.size(), oracle.clique.size()) << what;
     return a.nodes != b.nodes;
   };
-  int dispersed_handed = 0, random_handed = 0, graphs = 0;
-  for (int n : {200, 300}) {
-    for (double density : {0.25, 0.35, 0.42}) {
+  HandOffs h;
+  for (int n : sizes) {
+    for (double density : densities) {
       const std::string what = "n=" + std::to_string(n) + " density=" + std::to_string(density);
-      dispersed_handed +=
-          handed(vertex_density_graph(n, 0.0, 2 * density, rng), "dispersed " + what);
-      random_handed += handed(test::random_graph(n, density, rng), "G(n, p) " + what);
-      ++graphs;
+      h.dispersed += handed(vertex_density_graph(n, 0.0, 2 * density, rng), "dispersed " + what);
+      h.random += handed(test::random_graph(n, density, rng), "G(n, p) " + what);
+      ++h.graphs;
     }
   }
-  EXPECT_GE(dispersed_handed, graphs - 1) << "the dispersed graphs were not handed over";
-  EXPECT_EQ(random_handed, 0) << "G(n, p) was handed over";
+  return h;
+}
+
+TEST(Decomposition, AutoHandsDispersedSparserGraphsToTheDecompositionSoon) {
+  // Density 0.25-0.42, no near-clique: where each vertex draws its own density (degrees spread 3-5
+  // times a random graph's) BBMCX hands the search to the decomposition after
+  // decompose_after_words / 20,000 nodes (here 5), on G(n, p) after decompose_after_words / words
+  // (here 10,000 and more: never on these).
+  const HandOffs h = count_hand_offs({200, 300}, {0.25, 0.35, 0.42}, 100'000, 50001);
+  EXPECT_GE(h.dispersed, h.graphs - 1) << "the dispersed graphs were not handed over";
+  EXPECT_EQ(h.random, 0) << "G(n, p) was handed over";
 }
 
 TEST(Decomposition, AutoHandsSparseDispersedGraphsToTheDecompositionAfterFewNodes) {
   // Under density 0.2, where the degrees spread as the correspondence graphs' do, BBMCX hands the
   // search over after decompose_after_words / 8,000 nodes (here 10), and G(n, p) of that density
-  // after decompose_after_words / words (here 10,000 and more: never on these). The hand-off shows
-  // as a different node count from the same search without it; both ways against BBMC.
-  register_clique_algorithms();
-  std::mt19937_64 rng(62001);
-  CliqueSearchParams soon, never;
-  soon.decompose_after_words = 80'000;
-  never.decompose_after_words = 0;
-  int dispersed_handed = 0, random_handed = 0, graphs = 0;
-  for (int n : {500, 700}) {
-    for (double density : {0.08, 0.12, 0.16}) {
-      const std::string what = "n=" + std::to_string(n) + " density=" + std::to_string(density);
-      const BitGraph dispersed = vertex_density_graph(n, 0.0, 2 * density, rng);
-      const BitGraph random = test::random_graph(n, density, rng);
-      for (const BitGraph* g : {&dispersed, &random}) {
-        const std::string which = (g == &dispersed ? "dispersed " : "G(n, p) ") + what;
-        const auto oracle = CliqueAlgorithms::get("bbmc").run(*g, {});
-        const auto a = CliqueAlgorithms::get("auto").run(*g, soon);
-        const auto b = CliqueAlgorithms::get("auto").run(*g, never);
-        ASSERT_TRUE(a.optimal && b.optimal && oracle.optimal) << which;
-        EXPECT_TRUE(g->is_clique(a.clique) && g->is_clique(b.clique)) << which;
-        EXPECT_EQ(a.clique.size(), oracle.clique.size()) << which;
-        EXPECT_EQ(b.clique.size(), oracle.clique.size()) << which;
-        (g == &dispersed ? dispersed_handed : random_handed) += a.nodes != b.nodes;
-      }
-      ++graphs;
-    }
-  }
-  EXPECT_GE(dispersed_handed, graphs - 1) << "the sparse dispersed graphs were not handed over";
-  EXPECT_EQ(random_handed, 0) << "G(n, p) was handed over";
+  // after decompose_after_words / words (here 10,000 and more: never on these).
+  const HandOffs h = count_hand_offs({500, 700}, {0.08, 0.12, 0.16}, 80'000, 62001);
+  EXPECT_GE(h.dispersed, h.graphs - 1) << "the sparse dispersed graphs were not handed over";
+  EXPECT_EQ(h.random, 0) << "G(n, p) was handed over";
 }
 
 TEST(Decomposition, AutoTakesDispersedGraphsFromDensity045ToTheDensePath) {
