@@ -339,9 +339,9 @@ double degree_dispersion(const BitGraph& g) {
 // fewest nodes for its cost (johnson16-2-4 1.51x, hamming8-4 0.80x): BBMCX keeps them
 // (BENCHMARK.md, section 49).
 constexpr double kIrregular = 0.5;
-// Below kDenseGraph, on graphs that are no near-clique and whose degrees spread at least twice as
-// wide as a random graph's (the p_hat generator's scheme: dispersion 2.3-7.7 at density
-// 0.24-0.5), BBMCX hands the search to the decomposition after decompose_after_words /
+// From kDispersedDensity to kDenseGraph, on graphs that are no near-clique and whose degrees spread
+// at least twice as wide as a random graph's (the p_hat generator's scheme: dispersion 2.3-7.7 at
+// density 0.24-0.5), BBMCX hands the search to the decomposition after decompose_after_words /
 // kDispersedWordsPerNode nodes (2,000 by default) rather than after that many row words: the long
 // searches take 0.12-0.91x the time (a p_hat500-2-like graph 476 -> 59 ms, p_hat1000-1 103 -> 93),
 // and the easy correspondence-like graphs of that density (uniform outliers, eps a tenth of the
@@ -352,11 +352,13 @@ constexpr double kDispersed = 2.0;
 constexpr long long kDispersedWordsPerNode = 20'000;
 // Under kDispersedDensity the same hand-off comes after decompose_after_words /
 // kSparseDispersedWordsPerNode nodes (5,000 by default) where the degrees spread that wide: the
-// correspondence graphs of real scans (dispersion 2.5-31). After that many row words instead, a
-// node's cost was misjudged where it colours thousands of candidates or runs the cover search
-// (balm_realworld's FPFH k1 dumps: 500,000 nodes, 30-45 s, before the hand-off; the
-// decomposition then proves them in 0.1-1.5 s), while the corpus's searches that BBMCX ends
-// take at most 4,700 nodes there (corr_6614, the B-SHOT dumps; BENCHMARK.md, section 62).
+// correspondence graphs of real scans (dispersion 2.5-31 on the corpus's and balm_realworld's
+// sparse dumps). After that many row words instead, a node's cost was misjudged where it colours
+// thousands of candidates or runs the cover search (balm_realworld's FPFH k1 dumps: 500,000
+// nodes, 30-45 s, before the hand-off; the decomposition at once proves them in 76 ms-1.7 s).
+// The corpus's short BBMCX proofs on this path take at most 4,690 nodes (corr_6614, the B-SHOT
+// and k1 dumps) and keep them; its two long ones (k00_198_94 0.3 k3 and k10, 39,360 and 64,638
+// nodes) are handed over and take 1.3-2x as long, still ahead of every peer (section 62).
 constexpr long long kSparseDispersedWordsPerNode = 8'000;
 // From this density up, dispersed graphs take the dense graphs' path (the decomposition at once,
 // the interleaved local search, the dense MaxSAT options): the p_hat scheme's graphs of density
@@ -390,6 +392,8 @@ constexpr long long kWideNearCliqueNodes = 256;
 // sparse search BBMCX proves stays under 2.8e7 (k00_198_94 0.3 k10: 71,401 nodes of 391 words,
 // 2.4 s), and the two it does not prove in 30 s (k00_198_94 0.5 k3/k10, omega 120 and 110) are
 // proved in 6.4 and 8.7 s this way; the DIMACS graphs never get there (BENCHMARK.md, section 43).
+// Those dumps' degrees spread wide, so since section 62 they are handed over after 5,000 nodes
+// (kSparseDispersedWordsPerNode: 0.5 k3/k10 in 3.4 and 5.3 s).
 
 template <bool kAuto>
 CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& params) {

@@ -34,8 +34,9 @@ struct CliqueSearchParams {
       1;  ///< bbmc-dec: worker threads (0 = all cores); the clique is the same for any count
   std::uint64_t seed = 1;  ///< bbmcx-ls: the local search's random stream
   /// auto, on a sparse graph that is no near-clique: the row words BBMCX may colour (nodes times
-  /// the pruned graph's words, about 3 s on a 2-core VM) before it hands the search to the
-  /// decomposition with the MaxSAT bound; 0 = never (cliques/bbmc_variants.cpp).
+  /// the pruned graph's words, about 3 s on a 2-core VM; where the degrees spread wide, a fixed
+  /// share per node instead) before it hands the search to the decomposition with the MaxSAT
+  /// bound; 0 = never (cliques/bbmc_variants.cpp).
   long long decompose_after_words = 40'000'000;
 };
 
