@@ -194,4 +194,14 @@ BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,
   return sub;
 }
 
+bool colours_within(const BitGraph& g, int k) {
+  const auto W = static_cast<std::size_t>(g.words());
+  const std::vector<Word> all = first_n_set(g.size(), g.words());
+  std::vector<Word> U(W), Q(W);
+  std::vector<int> ord(static_cast<std::size_t>(g.size())), col(ord.size());
+  int classes = 0, coloured = 0;
+  return colour_kernel(all.data(), g.words(), g.row(0), k + 1, U.data(), Q.data(), ord.data(),
+                       col.data(), &classes, &coloured) == 0;
+}
+
 }  // namespace verifybench::detail

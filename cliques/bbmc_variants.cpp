@@ -277,17 +277,6 @@ constexpr int kNearCliqueRatio = 8;  // the greedy clique is at least 1/8 of the
 // (BENCHMARK.md, section 56).
 constexpr int kWideLocalRatio = 12;
 long long local_steps(int greedy) { return kLocalBaseSteps + 2LL * greedy; }
-// Whether BBMC's greedy colouring of g (independent sets taken in vertex order) needs at most
-// `k` colours: then no clique has more than k vertices.
-bool colours_within(const BitGraph& g, int k) {
-  const auto W = static_cast<std::size_t>(g.words());
-  const std::vector<Word> all = detail::first_n_set(g.size(), g.words());
-  std::vector<Word> U(W), Q(W);
-  std::vector<int> ord(static_cast<std::size_t>(g.size())), col(ord.size());
-  int classes = 0, coloured = 0;
-  return detail::colour_kernel(all.data(), g.words(), g.row(0), k + 1, U.data(), Q.data(),
-                               ord.data(), col.data(), &classes, &coloured) == 0;
-}
 // auto hands near-clique nodes to the cover search on sparse graphs (the correspondence graphs:
 // 3DMatch at density 0.07, omega 60, 15% more instructions without it), and on dense ones only
 // when the incumbent is this large.
@@ -422,7 +411,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
       // neither the local search (4,000 steps and more, 1-2 ms) nor the search runs
       // (hamming6-2, hamming8-2; BENCHMARK.md, section 58).
       const bool searched_up_front = near_clique || wide_sparse;
-      const bool proved = searched_up_front && colours_within(sub, incumbent);
+      const bool proved = searched_up_front && detail::colours_within(sub, incumbent);
       std::vector<int> local;
       if (searched_up_front && !proved) {
         local = local_search_clique(sub, ls, &ls_steps);
@@ -526,7 +515,7 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
           try {  // a deadline in its set-up keeps BBMCX's clique
             std::vector<int> better =
                 wide ? decompose(sub, size, budget, {}, {}, detail::Neighbourhood::kCover)
-                     : decompose(sub, size, budget);
+                     : decompose(sub, size, budget, {}, {}, detail::Neighbourhood::kMaxSatCover);
             if (!better.empty()) found = std::move(better);
           } catch (const DeadlinePassed&) {
             budget.stopped = true;

@@ -188,7 +188,7 @@ void BranchAndBound::search_packed(const Word* P, int size) {
 
 bool BranchAndBound::near_clique(const Word* P, int needed) const {
   if (needed < kMinCover) return false;  // small cliques: colouring bounds do well (DIMACS)
-  return BitGraph::count(P, W_) < 2 * needed + kCoverMargin;
+  return near_clique(BitGraph::count(P, W_), needed);
 }
 
 void BranchAndBound::consult_helper() {

@@ -136,6 +136,15 @@ class Decomposition {
     if (static_cast<int>(members.size()) + 1 <= size) return {};
     peel(size - 1, s);
     if (static_cast<int>(members.size()) + 1 <= size) return {};
+    // kMaxSatCover: a neighbourhood under twice the clique it needs is a near-clique, where the
+    // MaxSAT bound, off by the hundreds its colour classes hold, grows the incumbent one vertex
+    // a neighbourhood (balm_realworld's b125_0 FPFH 0.5 k3: 529 -> 580 in 30 s, 100,000-400,000
+    // nodes each) and the complement's LP bound proves it (585 in 2.6 s; BENCHMARK.md, section 63).
+    const bool near = search == Neighbourhood::kMaxSatCover &&
+                      BranchAndBound::near_clique(static_cast<int>(members.size()), size);
+    if (search == Neighbourhood::kMaxSatCover) {
+      search = near ? Neighbourhood::kCover : Neighbourhood::kMaxSat;
+    }
     // kCover: the LP bound on h_'s rows under a mask of the members, from the last neighbourhood's
     // matching, ends most neighbourhoods before their subgraph is built (k00_199_198 0.5 k10:
     // 4,300 of them; BENCHMARK.md, section 52). On the members' k-core (below) it can only be
@@ -156,6 +165,9 @@ class Decomposition {
       // out; on the k-core, when the peel took vertices, it may rule out more; BBMCX, handing its
       // near-clique nodes to the cover search, takes the rest.
       if (members.size() < peeled && lp_rules_out(sub, size - 1)) return {};
+      // Most of those kMaxSatCover takes here need no search: a colouring rules them out, as the
+      // MaxSAT search's root would (b112_72 0.5 k1: 1,100 of them; 1.5x the time without it).
+      if (near && colours_within(sub, size - 1)) return {};
       BranchAndBound bb(sub, size - 1, budget, true, true);
       bb.hand_off_near_cliques();
       bb.run();

@@ -44,6 +44,10 @@ int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U,
                   int* col, int* classes_used, int* coloured, Word* low = nullptr,
                   int* low_class = nullptr);
 
+/// Whether BBMC's greedy colouring of g (independent sets taken in vertex order) needs at most
+/// `k` colours: then no clique has more than k vertices.
+bool colours_within(const BitGraph& g, int k);
+
 /// Limits shared by every search of one solve: a deadline and a node budget, checked every 64
 /// nodes.
 struct SearchBudget {
@@ -128,6 +132,13 @@ class BranchAndBound {
   /// A node needing fewer than this many more vertices is not handed off (random dense graphs:
   /// brock200_1 5 s handed off, 0.23 s coloured).
   static constexpr int kMinCover = 32;
+  /// The hand-off test on a node's count of candidates: a near-clique has fewer than twice the
+  /// vertices a better clique needs, plus a margin (CoverSearch's own test for when its LP bound
+  /// of the complement can prune), and needs at least kMinCover.
+  static bool near_clique(int candidates, int needed) {
+    return needed >= kMinCover && candidates < 2 * needed + kCoverMargin;
+  }
+  static constexpr int kCoverMargin = 16;
 
   /// The subgraph induced by `vertices` (ascending ids), vertex k of the result being vertices[k].
   /// `mask` is a zeroed scratch bitset of g.words() words, zeroed again on return.
@@ -185,9 +196,7 @@ class BranchAndBound {
 
   void consult_helper();
 
-  // The hand-off test and the hand-off; near_clique() mirrors CoverSearch's own test for when its
-  // LP bound can prune (below 2 x needed + margin).
-  static constexpr int kCoverMargin = 16;
+  // The hand-off test on P (near_clique() above) and the hand-off.
   bool near_clique(const Word* P, int needed) const;
 
   void expand(int depth);

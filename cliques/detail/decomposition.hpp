@@ -37,8 +37,10 @@ struct Interleaved {
 /// The search in each neighbourhood of the decomposition: BBMC (bbmc-dec), the MaxSAT bound
 /// (SatBranchAndBound, LMC's bound) or, on near-cliques, the LP bound of the complement first and
 /// BBMCX handing near-clique nodes to the cover search where it does not rule the neighbourhood
-/// out.
-enum class Neighbourhood { kBbmc, kMaxSat, kCover };
+/// out. kMaxSatCover: the MaxSAT bound, but a neighbourhood that is itself a near-clique
+/// (BranchAndBound::near_clique() on its members and the clique it needs) takes kCover's search
+/// after a greedy colouring of it fails to rule it out.
+enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
 /// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
 /// neighbourhood (kMaxSat: SatBranchAndBound with `options`), or empty; budget.stopped when the
