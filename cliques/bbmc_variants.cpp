@@ -298,6 +298,13 @@ constexpr std::uint64_t kInterleavedStream = 1;
 // the decomposition's sparser neighbourhoods do not repay (BENCHMARK.md, section 56).
 constexpr detail::SatOptions kDenseSat{false, false, true};
 constexpr detail::SatOptions kNeighbourhoodSat{false, false, false};
+// In the hand-off of long sparse searches the neighbourhoods keep Re-NUMBER and failed literals,
+// and below kDispersedDensity (the correspondence graphs of scans, whose neighbourhoods hold
+// cliques of 100-600) relax the inconsistent subsets too: balm_realworld's b148_51 FPFH 0.5 k3
+// 4.1 -> 1.9 s (2.2x fewer nodes), the corpus's k00_198_94 0.5 k10 5.1 -> 4.5 s, 0.5 k3 and
+// b112_72 0.5 k3 0.96-0.99x; on p_hat500-1 and p_hat1000-1 (density 0.25, omega 9-10) it cost
+// 1.12-1.16x (BENCHMARK.md, section 63).
+constexpr detail::SatOptions kSparseNeighbourhoodSat{true, true, true};
 double density(const BitGraph& g) {
   const double n = g.size();
   return n > 1 ? 2.0 * static_cast<double>(g.edge_count()) / (n * (n - 1)) : 0.0;
@@ -382,7 +389,11 @@ constexpr long long kWideNearCliqueNodes = 256;
 // 2.4 s), and the two it does not prove in 30 s (k00_198_94 0.5 k3/k10, omega 120 and 110) are
 // proved in 6.4 and 8.7 s this way; the DIMACS graphs never get there (BENCHMARK.md, section 43).
 // Those dumps' degrees spread wide, so since section 62 they are handed over after 5,000 nodes
-// (kSparseDispersedWordsPerNode: 0.5 k3/k10 in 3.4 and 5.3 s).
+// (kSparseDispersedWordsPerNode: 0.5 k3/k10 in 3.4 and 5.3 s). A neighbourhood of that
+// decomposition that is itself a near-clique takes the cover search (kMaxSatCover): k3 dumps of
+// scans that overlap well hold dense clusters (balm_realworld's b125_0 FPFH 0.5 k3: neighbourhoods
+// of 585-1,100 members that need 529-585; it and b176_114 0.3 k3, unproved in 30 s, in 2.5 and
+// 7.3 s; section 63).
 
 template <bool kAuto>
 CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& params) {
@@ -515,7 +526,10 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
           try {  // a deadline in its set-up keeps BBMCX's clique
             std::vector<int> better =
                 wide ? decompose(sub, size, budget, {}, {}, detail::Neighbourhood::kCover)
-                     : decompose(sub, size, budget, {}, {}, detail::Neighbourhood::kMaxSatCover);
+                     : decompose(sub, size, budget, {},
+                                 dens < kDispersedDensity ? kSparseNeighbourhoodSat
+                                                          : detail::SatOptions{},
+                                 detail::Neighbourhood::kMaxSatCover);
             if (!better.empty()) found = std::move(better);
           } catch (const DeadlinePassed&) {
             budget.stopped = true;
