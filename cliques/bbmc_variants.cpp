@@ -631,7 +631,8 @@ void register_clique_algorithms() {
                            "with the MaxSAT bound and bbmcx-ls's local search between them, on "
                            "regular graphs BBMCX with that local search interleaved; the "
                            "neighbourhoods too after a long sparse search, soon where the "
-                           "degrees spread twice a random graph's)",
+                           "degrees spread twice a random graph's, the near-clique ones by "
+                           "cover's LP bound)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",
