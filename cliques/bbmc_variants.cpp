@@ -295,7 +295,8 @@ constexpr double kDenseLocalShare = 0.05;
 constexpr std::uint64_t kInterleavedStream = 1;
 // On dense graphs the MaxSAT test goes without Re-NUMBER and failed literals (sat_bb.hpp); from
 // kMaxSatDensity it relaxes the inconsistent subsets it finds rather than freezing them, which
-// the decomposition's sparser neighbourhoods do not repay (BENCHMARK.md, section 56).
+// the dense path's decomposition neighbourhoods (density 0.6-0.75) do not repay (BENCHMARK.md,
+// section 56).
 constexpr detail::SatOptions kDenseSat{false, false, true};
 constexpr detail::SatOptions kNeighbourhoodSat{false, false, false};
 // In the hand-off of long sparse searches the neighbourhoods keep Re-NUMBER and failed literals,
@@ -392,7 +393,7 @@ constexpr long long kWideNearCliqueNodes = 256;
 // (kSparseDispersedWordsPerNode: 0.5 k3/k10 in 3.4 and 5.3 s). A neighbourhood of that
 // decomposition that is itself a near-clique takes the cover search (kMaxSatCover): k3 dumps of
 // scans that overlap well hold dense clusters (balm_realworld's b125_0 FPFH 0.5 k3: neighbourhoods
-// of 585-1,100 members that need 529-585; it and b176_114 0.3 k3, unproved in 30 s, in 2.5 and
+// of 585-800 members that need 529-580; it and b176_114 0.3 k3, unproved in 30 s, in 2.5 and
 // 7.3 s; section 63).
 
 template <bool kAuto>

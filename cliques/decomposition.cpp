@@ -138,8 +138,8 @@ class Decomposition {
     if (static_cast<int>(members.size()) + 1 <= size) return {};
     // kMaxSatCover: a neighbourhood under twice the clique it needs is a near-clique, where the
     // MaxSAT bound, off by the hundreds its colour classes hold, grows the incumbent one vertex
-    // a neighbourhood (balm_realworld's b125_0 FPFH 0.5 k3: 529 -> 580 in 30 s, 100,000-400,000
-    // nodes each) and the complement's LP bound proves it (585 in 2.6 s; BENCHMARK.md, section 63).
+    // a neighbourhood (balm_realworld's b125_0 FPFH 0.5 k3: 529 -> 580 in 30 s, 446-408,000
+    // nodes each) and the complement's LP bound proves it (585 in 2.5 s; BENCHMARK.md, section 63).
     const bool near = search == Neighbourhood::kMaxSatCover &&
                       BranchAndBound::near_clique(static_cast<int>(members.size()), size);
     if (search == Neighbourhood::kMaxSatCover) {

@@ -388,9 +388,9 @@ TEST(Decomposition, WithTheCoverSearchInEachNeighbourhoodMatchesBruteForce) {
 
 TEST(Decomposition, WithTheCoverSearchOnNearCliqueNeighbourhoodsMatchesTheConstruction) {
   // kMaxSatCover (auto's hand-off of long sparse searches): near-cliques K of 80-200 vertices
-  // whose blocks of 24 lose 10-40% of their pairs (omega 31-113; those under the 32 the cover
-  // search needs are skipped: 2 of 12), among 300 sparse outliers, so that the
-  // neighbourhoods through K are near-cliques of the clique they need (BranchAndBound::
+  // whose blocks of 24 lose 10-40% of their pairs (omega 24-113; the 2 of 12 under the 32 the
+  // cover search needs are skipped, the 10 kept have 35-113), among 300 sparse outliers, so that
+  // the neighbourhoods through K are near-cliques of the clique they need (BranchAndBound::
   // near_clique()) and take the cover search, the others the MaxSAT bound. From no incumbent,
   // omega - 1 and omega, against omega from the construction; the cover path shows as node counts
   // that differ from kMaxSat's.

@@ -43,7 +43,8 @@ struct Interleaved {
 enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
 /// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
-/// neighbourhood (kMaxSat: SatBranchAndBound with `options`), or empty; budget.stopped when the
+/// neighbourhood (kMaxSat, and kMaxSatCover's neighbourhoods that are no near-cliques:
+/// SatBranchAndBound with `options`), or empty; budget.stopped when the
 /// budget ran out first.
 std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
                            const Interleaved& helper = {}, SatOptions options = {},

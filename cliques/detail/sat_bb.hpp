@@ -65,7 +65,9 @@ struct SatOptions {
   /// ms, G(200, 0.9) 1.86M -> 0.92M nodes and 0.82x the time) and without used-first costs 9-44%
   /// in the decomposition's neighbourhoods at density 0.6-0.75
   /// (brock200_4, sanr200_0.7, p_hat500-1: 10-30% fewer nodes, each test dearer; BENCHMARK.md,
-  /// section 56).
+  /// section 56). With Re-NUMBER and failed literals it pays in the neighbourhoods of auto's
+  /// hand-off of long sparse searches below density 0.2, whose cliques run to hundreds
+  /// (balm_realworld's b148_51 FPFH 0.5 k3 4.1 -> 1.9 s; section 63).
   bool relax = false;
 };
 
