@@ -21,7 +21,6 @@ constexpr int kMaxProbeClass = 2;
 // Nodes with more branching vertices than this skip the test: each costs a pass over the low
 // classes, and a few vertices fewer among many children saves little (p_hat300-3: 1.16 -> 1.01 s).
 constexpr int kMaxBranching = 32;
-constexpr int kCoverMargin = 16;  // as BranchAndBound::near_clique()
 // frozen_: a class in an inconsistent subset found for an earlier colour group (out of the tests),
 // or for the current one (pending: still in its tests, but taking no vertex in).
 constexpr char kPending = 2, kFrozen = 1;
@@ -487,7 +486,7 @@ void SatBranchAndBound::expand(int depth) {
   const int size = static_cast<int>(clique_.size());
   const int needed = best_size_ - size + 1;
   if (cover_min_ > 0 && needed >= cover_min_ &&
-      BitGraph::count(P, W_) < 2 * needed + kCoverMargin) {
+      BitGraph::count(P, W_) < 2 * needed + BranchAndBound::kCoverMargin) {
     hand_off_near_clique(g_, P, clique_, best_, best_size_, budget_, cover_scratch_);
     return;
   }
