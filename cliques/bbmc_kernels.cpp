@@ -1,7 +1,9 @@
 // BBMC kernels: the colouring loop (multi-versioned) and induced subgraphs by parallel bit
 // extraction: with the members in ascending order, row k of the
 // subgraph is the concatenation of pext(row(member k)[w], mask[w]) over the mask's words.
+#include <algorithm>
 #include <cstring>
+#include <numeric>
 
 #include "cliques/detail/bbmc.hpp"
 #include "core/detail/multiversion.hpp"
@@ -192,6 +194,61 @@ BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,
     std::copy(src, src + Wk, sub.row(j));
   }
   return sub;
+}
+
+bool recolours_within(const BitGraph& g, int k, const Recolouring& r, std::vector<int>* counts) {
+  const int n = g.size();
+  if (n <= k) return true;
+  const auto W = static_cast<std::size_t>(g.words());
+  const std::vector<Word> all = first_n_set(n, g.words());
+  std::vector<Word> U(W), Q(W);
+  std::vector<int> ord(static_cast<std::size_t>(n)), col(ord.size()), next(ord.size());
+  std::vector<int> at(ord.size()), first, classes_in;
+  std::iota(at.begin(), at.end(), 0);  // at[i]: the vertex of g at position i of `order`
+  BitGraph order;
+  const BitGraph* current = &g;
+  int fewest = n + 1, stale = 0;
+  for (int round = 0; round < r.max_rounds; ++round) {
+    int classes = 0, coloured = 0;
+    colour_kernel(all.data(), g.words(), current->row(0), 1, U.data(), Q.data(), ord.data(),
+                  col.data(), &classes, &coloured);
+    if (counts) counts->push_back(classes);
+    if (classes <= k) return true;
+    if (round == 0 && classes > k + k / r.slack_divisor) return false;
+    if (classes < fewest) {
+      fewest = classes;
+      stale = 0;
+    } else if (++stale >= r.patience) {
+      return false;
+    }
+    // ord lists the vertices class by class, classes ascending: class c is [first[c], first[c+1]).
+    first.assign(static_cast<std::size_t>(classes) + 2, 0);
+    for (int i = 0; i < n; ++i) {
+      ++first[static_cast<std::size_t>(col[static_cast<std::size_t>(i)]) + 1];
+    }
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    auto size_of = [&](int c) {
+      return first[static_cast<std::size_t>(c) + 1] - first[static_cast<std::size_t>(c)];
+    };
+    // The classes in reverse order, then largest first, alternately: either alone stalls sooner.
+    classes_in.resize(static_cast<std::size_t>(classes));
+    for (int c = 0; c < classes; ++c) classes_in[static_cast<std::size_t>(c)] = classes - c;
+    if (round % 2 == 1) {
+      std::stable_sort(classes_in.begin(), classes_in.end(),
+                       [&](int a, int b) { return size_of(a) > size_of(b); });
+    }
+    std::size_t put = 0;
+    for (int c : classes_in) {
+      for (int i = first[static_cast<std::size_t>(c)]; i < first[static_cast<std::size_t>(c) + 1];
+           ++i) {
+        next[put++] = at[static_cast<std::size_t>(ord[static_cast<std::size_t>(i)])];
+      }
+    }
+    at.swap(next);
+    order = permuted(g, at);
+    current = &order;
+  }
+  return false;
 }
 
 bool colours_within(const BitGraph& g, int k) {

@@ -54,6 +54,11 @@ BitGraph core_subgraph(const BitGraph& g, std::vector<int>& members, int target,
 
 namespace {
 
+// kMaxSatCover's neighbourhoods that are no near-cliques but have fewer members than 9/4 of the
+// clique they need hand their MaxSAT search to the cover search after this many nodes.
+constexpr long long kSatNodesBeforeCover = 5000;
+constexpr long long kCoverBandQuarters = 9;
+
 // |row & mask| over the listed words, with the hardware popcount where the CPU has one.
 VB_MULTIVERSION_POPCNT
 int count_in(const Word* row, const Word* mask, const int* words, int count) {
@@ -140,11 +145,17 @@ class Decomposition {
     // MaxSAT bound, off by the hundreds its colour classes hold, grows the incumbent one vertex
     // a neighbourhood (balm_realworld's b125_0 FPFH 0.5 k3: 529 -> 580 in 30 s, 446-408,000
     // nodes each) and the complement's LP bound proves it (585 in 2.5 s; BENCHMARK.md, section 63).
-    const bool near = search == Neighbourhood::kMaxSatCover &&
-                      BranchAndBound::near_clique(static_cast<int>(members.size()), size);
-    if (search == Neighbourhood::kMaxSatCover) {
-      search = near ? Neighbourhood::kCover : Neighbourhood::kMaxSat;
-    }
+    const bool hand_off = search == Neighbourhood::kMaxSatCover;
+    const bool near =
+        hand_off && BranchAndBound::near_clique(static_cast<int>(members.size()), size);
+    // Just past that ratio the MaxSAT search is mostly the faster, but a few of its searches run
+    // to 100,000s of nodes, which the cover search ends in about a second (b125_0 0.3 k3: three
+    // neighbourhoods of 1,680 members needing 831, 40 s of 58): past kSatNodesBeforeCover nodes
+    // it hands over.
+    const bool sat_then_cover =
+        hand_off && !near && size >= BranchAndBound::kMinCover &&
+        kCoverBandQuarters * size > 4LL * static_cast<long long>(members.size());
+    if (hand_off) search = near ? Neighbourhood::kCover : Neighbourhood::kMaxSat;
     // kCover: the LP bound on h_'s rows under a mask of the members, from the last neighbourhood's
     // matching, ends most neighbourhoods before their subgraph is built (k00_199_198 0.5 k10:
     // 4,300 of them; BENCHMARK.md, section 52). On the members' k-core (below) it can only be
@@ -154,24 +165,21 @@ class Decomposition {
     // The subgraph is at most the degeneracy: its peel needs no deadline (nor a throw in a worker).
     const BitGraph sub = core_subgraph(h_, members, size - 1, s.mask, kNoDeadline);
     if (sub.size() + 1 <= size) return {};
+    // In kMaxSatCover's hand-off most neighbourhoods that need a clique of hundreds are ruled out
+    // by a colouring, as the MaxSAT search's root would do (b112_72 0.5 k1: 1,100 of those the
+    // cover search takes; 1.5x the time without it), and of those a first colouring leaves, most
+    // by recolouring (recolours_within()): of b176_114 FPFH 0.5 k3's 2,220 neighbourhoods that
+    // need 869, a first colouring leaves 432, 20 rounds 103 (38 -> 17 s; section 64).
+    if (hand_off && size >= BranchAndBound::kMinCover && recolours_within(sub, size - 1)) return {};
     std::vector<int> found;
     if (search == Neighbourhood::kMaxSat) {
-      SatBranchAndBound bb(sub, size - 1, budget, options);
-      bb.run();
-      found = bb.best();
-      if (work) *work += bb.work();
+      found = sat_search(sub, size - 1, budget, options, sat_then_cover, work);
     } else if (search == Neighbourhood::kCover) {
       // A near-clique's neighbourhoods are near-cliques: the LP bound above ruled most of them
       // out; on the k-core, when the peel took vertices, it may rule out more; BBMCX, handing its
       // near-clique nodes to the cover search, takes the rest.
       if (members.size() < peeled && lp_rules_out(sub, size - 1)) return {};
-      // Most of those kMaxSatCover takes here need no search: a colouring rules them out, as the
-      // MaxSAT search's root would (b112_72 0.5 k1: 1,100 of them; 1.5x the time without it).
-      if (near && colours_within(sub, size - 1)) return {};
-      BranchAndBound bb(sub, size - 1, budget, true, true);
-      bb.hand_off_near_cliques();
-      bb.run();
-      found = bb.best();
+      found = cover_search(sub, size - 1, budget);
     } else {
       BranchAndBound bb(sub, size - 1, budget);
       bb.run();
@@ -185,6 +193,33 @@ class Decomposition {
   }
 
  private:
+  static std::vector<int> cover_search(const BitGraph& sub, int target, SearchBudget& budget) {
+    BranchAndBound bb(sub, target, budget, true, true);
+    bb.hand_off_near_cliques();
+    bb.run();
+    return bb.best();
+  }
+
+  // SatBranchAndBound on sub; with `then_cover`, stopped after kSatNodesBeforeCover nodes (not by
+  // the caller's limits) it hands the neighbourhood to the cover search, from what it found.
+  static std::vector<int> sat_search(const BitGraph& sub, int target, SearchBudget& budget,
+                                     SatOptions options, bool then_cover, long long* work) {
+    const long long user_limit = budget.node_limit;
+    const bool capped = then_cover && (user_limit == 0 ||
+                                       budget.nodes + kSatNodesBeforeCover < user_limit);
+    if (capped) budget.node_limit = budget.nodes + kSatNodesBeforeCover;
+    SatBranchAndBound bb(sub, target, budget, options);
+    bb.run();
+    if (work) *work += bb.work();
+    budget.node_limit = user_limit;
+    std::vector<int> found = bb.best();
+    if (!capped || !budget.stopped || SteadyClock::now() >= budget.deadline) return found;
+    budget.stopped = false;
+    std::vector<int> better =
+        cover_search(sub, std::max(target, static_cast<int>(found.size())), budget);
+    return better.empty() ? found : better;
+  }
+
   bool lp_rules_out_of_members(int v, int target, Scratch& s) const {
     for (int u : s.members) s.mask[static_cast<std::size_t>(u / kBits)] |= Word{1} << (u % kBits);
     const bool out = lp_rules_out(h_, s.members, s.mask.data(), v / kBits + 1, target, s.matching);

@@ -48,6 +48,24 @@ int colour_kernel(const Word* P, int words, const Word* rows, int kmin, Word* U,
 /// `k` colours: then no clique has more than k vertices.
 bool colours_within(const BitGraph& g, int k);
 
+/// How long recolours_within() goes on.
+struct Recolouring {
+  int max_rounds = 400;
+  int patience = 20;       ///< rounds in a row without fewer colours before it gives up
+  int slack_divisor = 16;  ///< gives up at once where the first round exceeds k by over k / this
+};
+
+/// Whether some greedy colouring of g needs at most `k` colours (then no clique has more than k
+/// vertices), by Culberson and Luo's iterated greedy ("Exploring the k-colorable landscape with
+/// iterated greedy", DIMACS 1996): BBMC's colouring, then again with the vertices grouped by the
+/// last colouring's classes, which never needs more colours (first-fit keeps each independent
+/// class within one); the classes in reverse order and largest first, alternately. On the
+/// near-cliques of balm_realworld's scans it closes gaps of 1-30 colours above the clique a
+/// neighbourhood needs (BENCHMARK.md, section 64). `counts`, when given, receives each round's
+/// number of colours.
+bool recolours_within(const BitGraph& g, int k, const Recolouring& r = {},
+                      std::vector<int>* counts = nullptr);
+
 /// Limits shared by every search of one solve: a deadline and a node budget, checked every 64
 /// nodes.
 struct SearchBudget {
