@@ -38,8 +38,10 @@ struct Interleaved {
 /// (SatBranchAndBound, LMC's bound) or, on near-cliques, the LP bound of the complement first and
 /// BBMCX handing near-clique nodes to the cover search where it does not rule the neighbourhood
 /// out. kMaxSatCover: the MaxSAT bound, but a neighbourhood that is itself a near-clique
-/// (BranchAndBound::near_clique() on its members and the clique it needs) takes kCover's search
-/// after a greedy colouring of it fails to rule it out.
+/// (BranchAndBound::near_clique() on its members and the clique it needs) takes kCover's search;
+/// each neighbourhood that needs 32 or more is first recoloured (recolours_within()), and one with
+/// fewer members than 9/4 of the clique it needs hands its MaxSAT search to kCover's after 5,000
+/// nodes.
 enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
 /// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
