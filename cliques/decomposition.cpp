@@ -55,8 +55,7 @@ BitGraph core_subgraph(const BitGraph& g, std::vector<int>& members, int target,
 namespace {
 
 // kMaxSatCover's neighbourhoods that are no near-cliques but have fewer members than 9/4 of the
-// clique they need hand their MaxSAT search to the cover search after this many nodes.
-constexpr long long kSatNodesBeforeCover = 5000;
+// clique they need hand their MaxSAT search to the cover search (after kSatNodesBeforeCover).
 constexpr long long kCoverBandQuarters = 9;
 
 // |row & mask| over the listed words, with the hardware popcount where the CPU has one.
@@ -109,6 +108,7 @@ class Decomposition {
     }
   }
   int size() const { return h_.size(); }
+  void set_sat_nodes_before_cover(long long nodes) { sat_nodes_before_cover_ = nodes; }
 
   /// Per-worker scratch of solve(): a zeroed bitset of h_'s width and two buffers.
   struct Scratch {
@@ -150,8 +150,8 @@ class Decomposition {
         hand_off && BranchAndBound::near_clique(static_cast<int>(members.size()), size);
     // Just past that ratio the MaxSAT search is mostly the faster, but a few of its searches run
     // to 100,000s of nodes, which the cover search ends in about a second (b125_0 0.3 k3: three
-    // neighbourhoods of 1,680 members needing 831, 40 s of 58): past kSatNodesBeforeCover nodes
-    // it hands over.
+    // neighbourhoods of 1,680 members needing 831, 40 s of 58): past sat_nodes_before_cover_
+    // nodes (kSatNodesBeforeCover unless decompose() is told otherwise) it hands over.
     const bool sat_then_cover =
         hand_off && !near && size >= BranchAndBound::kMinCover &&
         kCoverBandQuarters * size > 4LL * static_cast<long long>(members.size());
@@ -169,11 +169,20 @@ class Decomposition {
     // by a colouring, as the MaxSAT search's root would do (b112_72 0.5 k1: 1,100 of those the
     // cover search takes; 1.5x the time without it), and of those a first colouring leaves, most
     // by recolouring (recolours_within()): of b176_114 FPFH 0.5 k3's 2,220 neighbourhoods that
-    // need 869, a first colouring leaves 432, 20 rounds 103 (38 -> 17 s; section 64).
-    if (hand_off && size >= BranchAndBound::kMinCover && recolours_within(sub, size - 1)) return {};
+    // need 869, a first colouring leaves 432, 20 rounds of recolouring 103; with the kept
+    // setting it proves the dump in 17 s, not 38 (section 64). Those ruled out this way spend no
+    // node, so the deadline is read here.
+    if (hand_off && size >= BranchAndBound::kMinCover) {
+      if (SteadyClock::now() >= budget.deadline) {
+        budget.stopped = true;
+        return {};
+      }
+      if (recolours_within(sub, size - 1)) return {};
+    }
     std::vector<int> found;
     if (search == Neighbourhood::kMaxSat) {
-      found = sat_search(sub, size - 1, budget, options, sat_then_cover, work);
+      found = sat_search(sub, size - 1, budget, options,
+                         sat_then_cover ? sat_nodes_before_cover_ : 0, work);
     } else if (search == Neighbourhood::kCover) {
       // A near-clique's neighbourhoods are near-cliques: the LP bound above ruled most of them
       // out; on the k-core, when the peel took vertices, it may rule out more; BBMCX, handing its
@@ -200,14 +209,14 @@ class Decomposition {
     return bb.best();
   }
 
-  // SatBranchAndBound on sub; with `then_cover`, stopped after kSatNodesBeforeCover nodes (not by
-  // the caller's limits) it hands the neighbourhood to the cover search, from what it found.
+  // SatBranchAndBound on sub; stopped after `cover_after` nodes (when not 0; not by the caller's
+  // limits) it hands the neighbourhood to the cover search, from what it found.
   static std::vector<int> sat_search(const BitGraph& sub, int target, SearchBudget& budget,
-                                     SatOptions options, bool then_cover, long long* work) {
+                                     SatOptions options, long long cover_after, long long* work) {
     const long long user_limit = budget.node_limit;
-    const bool capped = then_cover && (user_limit == 0 ||
-                                       budget.nodes + kSatNodesBeforeCover < user_limit);
-    if (capped) budget.node_limit = budget.nodes + kSatNodesBeforeCover;
+    const bool capped =
+        cover_after > 0 && (user_limit == 0 || budget.nodes + cover_after < user_limit);
+    if (capped) budget.node_limit = budget.nodes + cover_after;
     SatBranchAndBound bb(sub, target, budget, options);
     bb.run();
     if (work) *work += bb.work();
@@ -259,14 +268,16 @@ class Decomposition {
   std::vector<int> order_;
   BitGraph h_;
   std::vector<int> prefix_colours_;  // colours of vertices 0..v (colour_prefixes()), or empty
+  long long sat_nodes_before_cover_ = kSatNodesBeforeCover;
 };
 
 }  // namespace
 
 std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
-                           const Interleaved& helper, SatOptions options,
-                           Neighbourhood search) {
+                           const Interleaved& helper, SatOptions options, Neighbourhood search,
+                           long long sat_nodes_before_cover) {
   Decomposition dec(g, budget.deadline);
+  dec.set_sat_nodes_before_cover(sat_nodes_before_cover);
   // On near-cliques the colouring rules out the first vertices at once (k00_199_198 0.3 k3
   // through the decomposition alone: 24.5 -> 18.1 s; BENCHMARK.md, section 51).
   if (search == Neighbourhood::kCover) dec.colour_prefixes();

@@ -287,7 +287,7 @@ TEST(Decomposition, RecolouringNeverGoesBelowTheCliqueNumberAndFindsPlantedColou
     const int parts = 8 + rep % 8;
     const double p = 0.5 + 0.02 * rep;
     const BitGraph g = planted_partition(parts, 12, p, rng);
-    int first_fit = parts;  // the colours one greedy colouring takes
+    int first_fit = 1;  // the colours one greedy colouring takes
     while (!detail::colours_within(g, first_fit)) ++first_fit;
     fewer += first_fit > parts && detail::recolours_within(g, first_fit - 1, r);
     std::vector<int> counts;  // down to the k planted, or until it stalls
@@ -481,6 +481,52 @@ TEST(Decomposition, WithTheCoverSearchOnNearCliqueNeighbourhoodsMatchesTheConstr
   ASSERT_GE(cases, 8);
   EXPECT_GE(differ, cases / 2)
       << "the cover search in the near-clique neighbourhoods was not exercised";
+}
+
+TEST(Decomposition, TheMaxSatSearchHandedToTheCoverSearchMidTreeMatchesTheConstruction) {
+  // kMaxSatCover with its MaxSAT searches handed to the cover search after one node (not 5,000),
+  // where a neighbourhood is no near-clique but under 9/4 x the clique it needs: the same omega
+  // as the construction's from no incumbent, omega - 1 and omega; a caller's node limit still
+  // stops the search and is left as it was. The hand-over shows as node counts that differ from
+  // the searches never handed over (sat_nodes_before_cover 0).
+  int differ = 0, cases = 0;
+  // Near-cliques of 240-320 vertices with omega 71-110 (of 64 or more, neighbourhoods between
+  // 2 x + 16 and 9/4 x the clique they need can exist); 320 at 0.45 (omega 83) takes the MaxSAT
+  // search 1.8 million nodes and is left out.
+  const struct {
+    int k;
+    double density;
+  } graphs[] = {{240, 0.3}, {320, 0.3}, {320, 0.6}};
+  for (const auto& [k, density] : graphs) {
+    const PlantedGraph nc = block_near_clique(k, 300, 24, density, 64101 + k);
+    ASSERT_GE(nc.omega, 2 * detail::BranchAndBound::kMinCover) << k << " " << density;
+    long long nodes[2] = {0, 0};
+    for (long long after : {0LL, 1LL}) {
+      detail::SearchBudget budget = detail::make_budget({});
+      for (int from : {0, nc.omega - 1}) {
+        const std::vector<int> found = detail::decompose(
+            nc.g, from, budget, {}, {}, detail::Neighbourhood::kMaxSatCover, after);
+        ASSERT_EQ(static_cast<int>(found.size()), nc.omega) << k << " " << density << " " << from;
+        ASSERT_TRUE(nc.g.is_clique(found)) << k;
+      }
+      ASSERT_TRUE(detail::decompose(nc.g, nc.omega, budget, {}, {},
+                                    detail::Neighbourhood::kMaxSatCover, after)
+                      .empty())
+          << k;
+      EXPECT_FALSE(budget.stopped);
+      EXPECT_EQ(budget.node_limit, 0);
+      nodes[after] = budget.nodes;
+    }
+    differ += nodes[0] != nodes[1];
+    ++cases;
+    detail::SearchBudget limited = detail::make_budget({});
+    limited.node_limit = 3;
+    detail::decompose(nc.g, 0, limited, {}, {}, detail::Neighbourhood::kMaxSatCover, 1);
+    EXPECT_EQ(limited.node_limit, 3) << k;
+    EXPECT_TRUE(limited.stopped) << k;
+  }
+  ASSERT_EQ(cases, 3);
+  EXPECT_GE(differ, 2) << "no MaxSAT search was handed to the cover search";  // measured: 3
 }
 
 TEST(Decomposition, AutoProvesNearCliquesWhoseCliqueIsUnderHalfThePrunedGraph) {

@@ -60,7 +60,7 @@ struct Recolouring {
 /// iterated greedy", DIMACS 1996): BBMC's colouring, then again with the vertices grouped by the
 /// last colouring's classes, which never needs more colours (first-fit keeps each independent
 /// class within one); the classes in reverse order and largest first, alternately. On the
-/// near-cliques of balm_realworld's scans it closes gaps of 1-30 colours above the clique a
+/// near-cliques of balm_realworld's scans it closes most gaps of 1-30 colours above the clique a
 /// neighbourhood needs (BENCHMARK.md, section 64). `counts`, when given, receives each round's
 /// number of colours.
 bool recolours_within(const BitGraph& g, int k, const Recolouring& r = {},

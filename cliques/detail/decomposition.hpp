@@ -44,13 +44,20 @@ struct Interleaved {
 /// nodes.
 enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
+/// kMaxSatCover: the MaxSAT nodes after which a neighbourhood under 9/4 x the clique it needs, but
+/// no near-clique, goes to kCover's search (b125_0 FPFH 0.3 k3: three of 326,000-764,000 nodes,
+/// 40 s of 58; BENCHMARK.md, section 64).
+constexpr long long kSatNodesBeforeCover = 5000;
+
 /// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
 /// neighbourhood (kMaxSat, and kMaxSatCover's neighbourhoods that are no near-cliques:
-/// SatBranchAndBound with `options`), or empty; budget.stopped when the
-/// budget ran out first.
+/// SatBranchAndBound with `options`, handed to kCover's search after `sat_nodes_before_cover`
+/// nodes where kSatNodesBeforeCover says; 0: never), or empty; budget.stopped when the budget
+/// ran out first.
 std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
                            const Interleaved& helper = {}, SatOptions options = {},
-                           Neighbourhood search = Neighbourhood::kMaxSat);
+                           Neighbourhood search = Neighbourhood::kMaxSat,
+                           long long sat_nodes_before_cover = kSatNodesBeforeCover);
 
 /// bbmc-dec: BBMC on each vertex's later neighbours in degeneracy order (PMC's scheme).
 CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p);
