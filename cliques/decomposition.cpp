@@ -58,12 +58,17 @@ namespace {
 // clique they need hand their MaxSAT search to the cover search (after kSatNodesBeforeCover).
 constexpr long long kCoverBandQuarters = 9;
 
-// |row & mask| over the listed words, with the hardware popcount where the CPU has one.
+// Whether |row & mask| over the listed words reaches k, with the hardware popcount where the CPU
+// has one; it stops counting there.
 VB_MULTIVERSION_POPCNT
-int count_in(const Word* row, const Word* mask, const int* words, int count) {
+bool counts_at_least(const Word* row, const Word* mask, const int* words, int count, int k) {
+  if (k <= 0) return true;
   int d = 0;
-  for (int i = 0; i < count; ++i) d += __builtin_popcountll(row[words[i]] & mask[words[i]]);
-  return d;
+  for (int i = 0; i < count; ++i) {
+    d += __builtin_popcountll(row[words[i]] & mask[words[i]]);
+    if (d >= k) return true;
+  }
+  return false;
 }
 
 // bbmc-dec: every maximum clique has a first vertex v in degeneracy order, and its other vertices
@@ -248,14 +253,26 @@ class Decomposition {
       if (s.mask[static_cast<std::size_t>(w)] == 0) s.words.push_back(w);
       s.mask[static_cast<std::size_t>(w)] |= Word{1} << (u % kBits);
     }
-    for (int u : s.members) {
-      const int d = count_in(h_.row(u), s.mask.data(), s.words.data(),
-                             static_cast<int>(s.words.size()));
-      if (d < k) s.mask[static_cast<std::size_t>(u / kBits)] &= ~(Word{1} << (u % kBits));
+    // The last members first: later in the order, of lower core, they are the likeliest to drop,
+    // and each one dropped leaves the others fewer. Once more have dropped than the members
+    // have to spare, no clique of k + 1 is left among them.
+    const int spare = static_cast<int>(s.members.size()) - (k + 1);
+    int dropped = 0;
+    for (auto it = s.members.rbegin(); it != s.members.rend() && dropped <= spare; ++it) {
+      const int u = *it;
+      if (!counts_at_least(h_.row(u), s.mask.data(), s.words.data(),
+                           static_cast<int>(s.words.size()), k)) {
+        s.mask[static_cast<std::size_t>(u / kBits)] &= ~(Word{1} << (u % kBits));
+        ++dropped;
+      }
     }
     std::size_t kept = 0;
-    for (int u : s.members) {
-      if ((s.mask[static_cast<std::size_t>(u / kBits)] >> (u % kBits)) & 1) s.members[kept++] = u;
+    if (dropped <= spare) {
+      for (int u : s.members) {
+        if ((s.mask[static_cast<std::size_t>(u / kBits)] >> (u % kBits)) & 1) {
+          s.members[kept++] = u;
+        }
+      }
     }
     s.members.resize(kept);
     for (int w : s.words) s.mask[static_cast<std::size_t>(w)] = 0;
