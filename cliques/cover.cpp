@@ -20,6 +20,10 @@ constexpr int kMinPacked = 32;
 // Cycles of the matching this short are checked for being cliques of H (a clique of k vertices
 // needs k - 1 of them in a cover, not ceil(k / 2)); longer ones rarely are.
 constexpr int kMaxCliqueCycle = 16;
+
+// A search keeps its lists' live parts first (go_live()) from this many branching nodes on: a
+// deep search scans mostly removed vertices otherwise, a short one would pay the set-up.
+constexpr int kLiveAfter = 32;
 }  // namespace
 
 CoverSearch::CoverSearch(const BitGraph& g, int incumbent, SearchBudget& budget)
@@ -291,13 +295,57 @@ void CoverSearch::undo_matching(std::size_t log_size) {
   }
 }
 
+void CoverSearch::swap_entries(int a, int b) {
+  std::swap(nbr_[static_cast<std::size_t>(a)], nbr_[static_cast<std::size_t>(b)]);
+  std::swap(twin_[static_cast<std::size_t>(a)], twin_[static_cast<std::size_t>(b)]);
+  twin_[static_cast<std::size_t>(twin_[static_cast<std::size_t>(a)])] = a;
+  twin_[static_cast<std::size_t>(twin_[static_cast<std::size_t>(b)])] = b;
+}
+
+void CoverSearch::go_live() {
+  // twin_[k]: where the edge of entry k sits in its other end's list (the lists still ascend, so
+  // each list's entries are met in order as u ascends).
+  twin_.resize(nbr_.size());
+  std::vector<int> cursor(off_.begin(), off_.end() - 1);
+  for (int u = 0; u < n_; ++u) {
+    for (int k = off_[u]; k < off_[u + 1]; ++k) {
+      twin_[static_cast<std::size_t>(k)] = cursor[static_cast<std::size_t>(nbr_[k])]++;
+    }
+  }
+  for (int u = 0; u < n_; ++u) {
+    if (alive_[static_cast<std::size_t>(u)]) live_first(u);
+  }
+  live_ = true;
+  live_from_ = trail_.size();
+}
+
+void CoverSearch::live_first(int u) {
+  int i = off_[u], j = off_[u + 1] - 1;
+  while (i <= j) {
+    if (alive_[static_cast<std::size_t>(nbr_[static_cast<std::size_t>(i)])]) {
+      ++i;
+    } else {
+      swap_entries(i, j--);
+    }
+  }
+}
+
 void CoverSearch::remove(int v) {
   alive_[static_cast<std::size_t>(v)] = 0;
   --alive_count_;
   trail_.push_back(v);
-  for (int k = off_[v]; k < off_[v + 1]; ++k) {
-    const int u = nbr_[static_cast<std::size_t>(k)];
-    if (alive_[static_cast<std::size_t>(u)]) --deg_[static_cast<std::size_t>(u)];
+  if (live_) {
+    // v's entry in each live neighbour's list moves to just past that list's live part.
+    for (int k = off_[v], end = scan_end(v); k < end; ++k) {
+      const int u = nbr_[static_cast<std::size_t>(k)];
+      const int last = --deg_[static_cast<std::size_t>(u)] + off_[u];
+      swap_entries(twin_[static_cast<std::size_t>(k)], last);
+    }
+  } else {
+    for (int k = off_[v]; k < off_[v + 1]; ++k) {
+      const int u = nbr_[static_cast<std::size_t>(k)];
+      if (alive_[static_cast<std::size_t>(u)]) --deg_[static_cast<std::size_t>(u)];
+    }
   }
   if (const int r = mate_l_[static_cast<std::size_t>(v)]; r >= 0) {
     set_right(r, -1);
@@ -311,9 +359,16 @@ void CoverSearch::remove(int v) {
 
 void CoverSearch::take(int v) {
   set_.push_back(v);
-  for (int k = off_[v]; k < off_[v + 1]; ++k) {
-    const int u = nbr_[static_cast<std::size_t>(k)];
-    if (alive_[static_cast<std::size_t>(u)]) remove(u);
+  if (live_) {
+    // Each removal takes the last live entry of v's list out of its live part.
+    while (deg_[static_cast<std::size_t>(v)] > 0) {
+      remove(nbr_[static_cast<std::size_t>(scan_end(v) - 1)]);
+    }
+  } else {
+    for (int k = off_[v]; k < off_[v + 1]; ++k) {
+      const int u = nbr_[static_cast<std::size_t>(k)];
+      if (alive_[static_cast<std::size_t>(u)]) remove(u);
+    }
   }
   remove(v);
 }
@@ -325,9 +380,28 @@ void CoverSearch::restore(std::size_t trail_size) {
     trail_.pop_back();
     alive_[static_cast<std::size_t>(v)] = 1;
     ++alive_count_;
-    for (int k = off_[v]; k < off_[v + 1]; ++k) {
-      const int u = nbr_[static_cast<std::size_t>(k)];
-      if (alive_[static_cast<std::size_t>(u)]) ++deg_[static_cast<std::size_t>(u)];
+    if (live_ && trail_.size() >= live_from_) {
+      // v's live part was frozen when it left and holds exactly the neighbours live again now;
+      // v's entry lies just past each one's live part (later removals' entries came back first).
+      for (int k = off_[v], end = scan_end(v); k < end; ++k) {
+        ++deg_[static_cast<std::size_t>(nbr_[k])];
+      }
+    } else if (live_) {
+      // Removed before go_live(): v's entry goes back into each live neighbour's live part, and
+      // v's own list is split as go_live() split the others.
+      live_from_ = trail_.size();
+      for (int k = off_[v]; k < off_[v + 1]; ++k) {
+        const int u = nbr_[static_cast<std::size_t>(k)];
+        if (!alive_[static_cast<std::size_t>(u)]) continue;
+        const int first_out = off_[u] + deg_[static_cast<std::size_t>(u)]++;
+        swap_entries(twin_[static_cast<std::size_t>(k)], first_out);
+      }
+      live_first(v);
+    } else {
+      for (int k = off_[v]; k < off_[v + 1]; ++k) {
+        const int u = nbr_[static_cast<std::size_t>(k)];
+        if (alive_[static_cast<std::size_t>(u)]) ++deg_[static_cast<std::size_t>(u)];
+      }
     }
   }
 }
@@ -349,7 +423,7 @@ bool CoverSearch::bfs() {
   for (std::size_t head = 0; head < queue_.size(); ++head) {
     const int u = queue_[head];
     if (found && dist_[static_cast<std::size_t>(u)] > found_at) break;
-    for (int k = off_[u]; k < off_[u + 1]; ++k) {
+    for (int k = off_[u], end = scan_end(u); k < end; ++k) {
       const int v = nbr_[static_cast<std::size_t>(k)];
       if (!alive_[static_cast<std::size_t>(v)]) continue;
       const int w = mate_r_[static_cast<std::size_t>(v)];
@@ -372,7 +446,7 @@ bool CoverSearch::dfs(int root) {
   while (!stack_.empty()) {
     const int x = stack_.back();
     int& at = iter_[static_cast<std::size_t>(x)];
-    if (at == off_[x + 1]) {
+    if (at == scan_end(x)) {
       dist_[static_cast<std::size_t>(x)] = -2;  // a dead end for the rest of this phase
       stack_.pop_back();
       if (!stack_.empty()) ++iter_[static_cast<std::size_t>(stack_.back())];
@@ -431,7 +505,7 @@ bool CoverSearch::reduce_lp() {
   for (int v = 0; v < n_; ++v) z_r_[static_cast<std::size_t>(v)] = 0;
   for (int u = 0; u < n_; ++u) {
     if (!alive_[static_cast<std::size_t>(u)] || dist_[static_cast<std::size_t>(u)] < 0) continue;
-    for (int k = off_[u]; k < off_[u + 1]; ++k) {
+    for (int k = off_[u], end = scan_end(u); k < end; ++k) {
       const int v = nbr_[static_cast<std::size_t>(k)];
       if (alive_[static_cast<std::size_t>(v)]) z_r_[static_cast<std::size_t>(v)] = 1;
     }
@@ -538,7 +612,7 @@ bool CoverSearch::split_components() {
     labelled[static_cast<std::size_t>(s)] = 1;
     for (std::size_t head = 0; head < part.size(); ++head) {
       const int u = part[head];
-      for (int k = off_[u]; k < off_[u + 1]; ++k) {
+      for (int k = off_[u], end = scan_end(u); k < end; ++k) {
         const int v = nbr_[static_cast<std::size_t>(k)];
         if (alive_[static_cast<std::size_t>(v)] && !labelled[static_cast<std::size_t>(v)]) {
           labelled[static_cast<std::size_t>(v)] = 1;
@@ -603,6 +677,8 @@ void CoverSearch::node(int depth) {
     } else if (depth > 0 && alive_count_ >= kMinPacked && alive_count_ * kPackRatio <= n_) {
       search_packed();
     } else {
+      // Past kLiveAfter nodes, removals keep each list's live part first (go_live()).
+      if (!live_ && ++branches_ > kLiveAfter) go_live();
       const int v = branch_vertex();
       const std::size_t mark = trail_.size(), log_mark = log_.size(), branch_set = set_.size();
       remove(v);  // v in the cover
@@ -618,7 +694,8 @@ void CoverSearch::node(int depth) {
       }
     }
   }
-  restore(trail_mark);
+  // The root's own removals may predate go_live(): nothing reads the lists after the root.
+  if (depth > 0) restore(trail_mark);
   set_.resize(set_mark);
 }
 

@@ -84,13 +84,30 @@ class CoverSearch {
   void take(int v);    // v into the independent set, its neighbours into the cover
   void restore(std::size_t trail_size);
   bool h_adjacent(int u, int v) const { return u != v && !g_.adjacent(u, v); }
+  // Where a scan of v's list ends: once live_, off_[v] .. scan_end(v) lists exactly v's live
+  // neighbours (while v is live; a removed vertex's part is frozen with those live when it left),
+  // before that the whole list.
+  int scan_end(int v) const {
+    const auto k = static_cast<std::size_t>(v);
+    return live_ ? off_[k] + deg_[k] : off_[k + 1];
+  }
+  // The lists' live parts, once a search has branched kLiveAfter times (a short search would
+  // pay the set-up; a deep node's lists are mostly removed vertices).
+  void go_live();
+  void live_first(int u);           // u's list split: its live neighbours first
+  void swap_entries(int a, int b);  // two entries of one list, with their twins
 
   const BitGraph& g_;
   const int n_;
   int best_size_;
   SearchBudget& budget_;
   int root_upper_;
-  std::vector<int> off_, nbr_;  // H as adjacency lists (CSR)
+  // H as adjacency lists (CSR); once live_, each with its live neighbours first, and twin_[k] is
+  // the position of entry k's edge in the other end's list (what a removal swaps in O(1)).
+  std::vector<int> off_, nbr_, twin_;
+  bool live_ = false;
+  std::size_t live_from_ = 0;  // trail_ entries from here on left after go_live()
+  int branches_ = 0;
   std::vector<char> alive_;
   std::vector<int> deg_;    // degree among alive vertices (frozen while a vertex is removed)
   std::vector<int> trail_;  // removed vertices, in order
