@@ -21,8 +21,8 @@ constexpr int kMinPacked = 32;
 // needs k - 1 of them in a cover, not ceil(k / 2)); longer ones rarely are.
 constexpr int kMaxCliqueCycle = 16;
 
-// A search keeps its lists' live parts first (go_live()) from this many branching nodes on: a
-// deep search scans mostly removed vertices otherwise, a short one would pay the set-up.
+// A search keeps its lists' live parts first (go_live()) once it has branched this many times:
+// a deep search scans mostly removed vertices otherwise, a short one would pay the set-up.
 constexpr int kLiveAfter = 32;
 }  // namespace
 
@@ -309,7 +309,8 @@ void CoverSearch::go_live() {
   std::vector<int> cursor(off_.begin(), off_.end() - 1);
   for (int u = 0; u < n_; ++u) {
     for (int k = off_[u]; k < off_[u + 1]; ++k) {
-      twin_[static_cast<std::size_t>(k)] = cursor[static_cast<std::size_t>(nbr_[k])]++;
+      const int v = nbr_[static_cast<std::size_t>(k)];
+      twin_[static_cast<std::size_t>(k)] = cursor[static_cast<std::size_t>(v)]++;
     }
   }
   for (int u = 0; u < n_; ++u) {
@@ -384,7 +385,7 @@ void CoverSearch::restore(std::size_t trail_size) {
       // v's live part was frozen when it left and holds exactly the neighbours live again now;
       // v's entry lies just past each one's live part (later removals' entries came back first).
       for (int k = off_[v], end = scan_end(v); k < end; ++k) {
-        ++deg_[static_cast<std::size_t>(nbr_[k])];
+        ++deg_[static_cast<std::size_t>(nbr_[static_cast<std::size_t>(k)])];
       }
     } else if (live_) {
       // Removed before go_live(): v's entry goes back into each live neighbour's live part, and
@@ -694,7 +695,7 @@ void CoverSearch::node(int depth) {
       }
     }
   }
-  // The root's own removals may predate go_live(): nothing reads the lists after the root.
+  // run() is called once and the lists are not read after the root: its removals stay.
   if (depth > 0) restore(trail_mark);
   set_.resize(set_mark);
 }

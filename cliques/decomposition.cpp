@@ -246,6 +246,7 @@ class Decomposition {
   // a bitset of the members, before the subgraph is built; solve() then peels the subgraph to its
   // k-core. On the sparse negatives of the corpus (n 23,000-25,000, omega 110-120) about one
   // subproblem in ten survives (2,400 of 23,000 at a clique of 110): 13.8 -> 11.1 s for bbmc-dec.
+  // When too many drop for a clique of k + 1, it empties the members (BENCHMARK.md, section 65).
   void peel(int k, Scratch& s) const {
     s.words.clear();
     for (int u : s.members) {
@@ -253,9 +254,9 @@ class Decomposition {
       if (s.mask[static_cast<std::size_t>(w)] == 0) s.words.push_back(w);
       s.mask[static_cast<std::size_t>(w)] |= Word{1} << (u % kBits);
     }
-    // The last members first: later in the order, of lower core, they are the likeliest to drop,
-    // and each one dropped leaves the others fewer. Once more have dropped than the members
-    // have to spare, no clique of k + 1 is left among them.
+    // The largest ids first: removed earliest in the degeneracy order, of lower core, they are
+    // the likeliest to drop, and each one dropped leaves the others fewer. Once more have
+    // dropped than the members have to spare, no clique of k + 1 is left among them.
     const int spare = static_cast<int>(s.members.size()) - (k + 1);
     int dropped = 0;
     for (auto it = s.members.rbegin(); it != s.members.rend() && dropped <= spare; ++it) {

@@ -55,7 +55,8 @@ class CoverSearch {
   /// beat.
   CoverSearch(const BitGraph& g, int incumbent, SearchBudget& budget);
 
-  /// Searches; best() is empty unless a clique larger than the incumbent was found.
+  /// Searches (once per object); best() is empty unless a clique larger than the incumbent was
+  /// found.
   void run();
   const std::vector<int>& best() const { return best_; }  ///< ids of g
   /// An upper bound on the clique number of g from the reduced root (valid once run() returned,
@@ -85,14 +86,15 @@ class CoverSearch {
   void restore(std::size_t trail_size);
   bool h_adjacent(int u, int v) const { return u != v && !g_.adjacent(u, v); }
   // Where a scan of v's list ends: once live_, off_[v] .. scan_end(v) lists exactly v's live
-  // neighbours (while v is live; a removed vertex's part is frozen with those live when it left),
-  // before that the whole list.
+  // neighbours (while v is live; the part of a vertex removed after go_live() is frozen with those
+  // live when it left; one removed before is split when it comes back), before that the whole
+  // list.
   int scan_end(int v) const {
     const auto k = static_cast<std::size_t>(v);
     return live_ ? off_[k] + deg_[k] : off_[k + 1];
   }
-  // The lists' live parts, once a search has branched kLiveAfter times (a short search would
-  // pay the set-up; a deep node's lists are mostly removed vertices).
+  // The lists' live parts, once a search has branched more than kLiveAfter times (a short
+  // search would pay the set-up; a deep node's lists are mostly removed vertices).
   void go_live();
   void live_first(int u);           // u's list split: its live neighbours first
   void swap_entries(int a, int b);  // two entries of one list, with their twins
