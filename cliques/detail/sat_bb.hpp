@@ -119,6 +119,8 @@ class SatBranchAndBound {
   // Re-NUMBER with the test's counts: v has one neighbour u in a class k1, u none in a class k2.
   bool renumber(int v, int low);
   bool no_neighbour_in(int u, int k) const;  // no member of low class k is u's neighbour
+  // The last unfrozen low class past k1 holding none of u's neighbours, or k1 when none does.
+  int last_class_without(int u, int k1, int low);
   // Propagates the queued units from queue position `from`; returns the emptied class or -1.
   int up_propagate(std::size_t from);
   template <bool kRelax>
@@ -170,6 +172,7 @@ class SatBranchAndBound {
   std::vector<int> reason_next_;   // per edge: next edge of the same class
   std::vector<int> stack_;
   std::vector<int> ones_;  // the classes a test leaves one member: the first ones_count_
+  std::vector<int> hits_, touched_;  // last_class_without(): per class, u's non-neighbours in it
   int ones_count_ = 0;
   std::vector<char> marks_;
   std::vector<int> marked_;  // the classes marks_ holds
