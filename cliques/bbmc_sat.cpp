@@ -26,8 +26,10 @@ constexpr int kMaxBranching = 32;
 constexpr char kPending = 2, kFrozen = 1;
 // SatOptions::relax: a class of a relaxed subset stays in the tests but takes no vertex in.
 constexpr char kRelaxed = 3;
-// Re-NUMBER looks for a class without u's neighbours by counting u's non-neighbours per class
-// when they are at most this many, else by testing the classes from the last down.
+// Re-NUMBER looks for a class without u's neighbours by testing the classes from the last down;
+// past this many passes over the node's words (plus 8) it counts u's non-neighbours per class
+// instead, when they are at most kMaxStrangers.
+constexpr int kTestPasses = 2;
 constexpr int kMaxStrangers = 64;
 
 // The union of the `low` classes (words [lo, end) of W each) into A, and each class's size.
@@ -145,14 +147,26 @@ bool SatBranchAndBound::no_neighbour_in(int u, int k) const {
 }
 
 int SatBranchAndBound::last_class_without(int u, int k1, int low) {
-  // A class holds none of u's neighbours when all its members are among u's non-neighbours. On a
-  // dense node they are few: counting them per class costs one pass over u's row, where testing
-  // the classes from the last down costs a pass for each class u has a neighbour in (144 classes
-  // a call on the dense nodes of balm_realworld's b112_72 FPFH 0.3 k3).
+  // Testing a class reads u's row up to the first neighbour it holds: one word or a few where the
+  // first class tested has none (sparse nodes, p_hat1000-1), but on a dense node u has a neighbour
+  // in nearly every class (144 classes tested a call on balm_realworld's b112_72 FPFH 0.3 k3).
+  // There a class holds none of u's neighbours when all its members are among u's few
+  // non-neighbours: counting those per class costs one pass over the row.
   const Word* Nu = g_.row(u);
+  int top = low - 1;
+  int budget = kTestPasses * (end_ - lo_) + 8;  // words the tests may read
+  for (; top > k1; --top) {
+    if (frozen_[static_cast<std::size_t>(top)]) continue;
+    const Word* C = classes_.data() + static_cast<std::size_t>(top) * W_;
+    int x = lo_;
+    while (x < end_ && (C[x] & Nu[x]) == 0) ++x;
+    if (x == end_) return top;
+    budget -= x - lo_ + 1;
+    if (budget <= 0) break;
+  }
+  if (--top <= k1) return k1;
   if (count_and_not(A_.data(), Nu, lo_, end_) > kMaxStrangers) {
-    // Many non-neighbours (a sparse node): the first class tested mostly has none of them.
-    int top = low - 1;
+    // Many non-neighbours: the rest tested one by one.
     while (top > k1 && (frozen_[static_cast<std::size_t>(top)] || !no_neighbour_in(u, top))) --top;
     return top;
   }
@@ -168,7 +182,7 @@ int SatBranchAndBound::last_class_without(int u, int k1, int low) {
   int k2 = k1;
   for (const int k : touched_) {
     const auto ks = static_cast<std::size_t>(k);
-    if (k > k2 && k < low && !frozen_[ks] && hits_[ks] == open_[ks]) k2 = k;
+    if (k > k2 && k <= top && !frozen_[ks] && hits_[ks] == open_[ks]) k2 = k;
     hits_[ks] = 0;
   }
   return k2;
