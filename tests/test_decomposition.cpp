@@ -21,19 +21,33 @@
 namespace verifybench {
 namespace {
 
+// Each pair u < v an edge with probability p(u, v) (a coin drawn only where it is above 0).
+template <typename Probability>
+BitGraph graph_with_edge_probability(int n, Probability p, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> coin(0.0, 1.0);
+  BitGraph g(n);
+  for (int u = 0; u < n; ++u) {
+    for (int v = u + 1; v < n; ++v) {
+      const double q = p(u, v);
+      if (q > 0.0 && coin(rng) < q) g.add_edge(u, v);
+    }
+  }
+  return g;
+}
+
 // The p_hat generator's scheme (Gendreau, Soriano & Salvail 1993): each vertex draws its own
 // density in [lo, hi], and a pair is an edge with the mean of the two. Degrees spread far wider
 // than on G(n, p) of the same density.
 BitGraph vertex_density_graph(int n, double lo, double hi, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> weight(lo, hi), coin(0.0, 1.0);
+  std::uniform_real_distribution<double> weight(lo, hi);
   std::vector<double> w(static_cast<std::size_t>(n));
   for (double& x : w) x = weight(rng);
-  BitGraph g(n);
-  for (int u = 0; u < n; ++u)
-    for (int v = u + 1; v < n; ++v)
-      if (coin(rng) < 0.5 * (w[static_cast<std::size_t>(u)] + w[static_cast<std::size_t>(v)]))
-        g.add_edge(u, v);
-  return g;
+  return graph_with_edge_probability(
+      n,
+      [&](int u, int v) {
+        return 0.5 * (w[static_cast<std::size_t>(u)] + w[static_cast<std::size_t>(v)]);
+      },
+      rng);
 }
 
 TEST(Decomposition, WithTheLocalSearchBetweenSubproblemsMatchesBruteForce) {
@@ -253,13 +267,12 @@ BitGraph planted_partition(int parts, int size, double p, std::mt19937_64& rng) 
   std::vector<int> part(static_cast<std::size_t>(n));
   for (int v = 0; v < n; ++v) part[static_cast<std::size_t>(v)] = v % parts;
   std::shuffle(part.begin(), part.end(), rng);
-  std::uniform_real_distribution<double> coin(0.0, 1.0);
-  BitGraph g(n);
-  for (int u = 0; u < n; ++u)
-    for (int v = u + 1; v < n; ++v)
-      if (part[static_cast<std::size_t>(u)] != part[static_cast<std::size_t>(v)] && coin(rng) < p)
-        g.add_edge(u, v);
-  return g;
+  return graph_with_edge_probability(
+      n,
+      [&](int u, int v) {
+        return part[static_cast<std::size_t>(u)] != part[static_cast<std::size_t>(v)] ? p : 0.0;
+      },
+      rng);
 }
 
 TEST(Decomposition, RecolouringNeverGoesBelowTheCliqueNumberAndFindsPlantedColourings) {
