@@ -151,7 +151,8 @@ int SatBranchAndBound::last_class_without(int u, int k1, int low) {
   // first class tested has none (sparse nodes, p_hat1000-1), but on a dense node u has a neighbour
   // in nearly every class (144 classes tested a call on balm_realworld's b112_72 FPFH 0.3 k3).
   // There a class holds none of u's neighbours when all its members are among u's few
-  // non-neighbours: counting those per class costs one pass over the row.
+  // non-neighbours: counting those per class costs two passes over the row (one counts them, one
+  // files them by class).
   const Word* Nu = g_.row(u);
   int top = low - 1;
   int budget = kTestPasses * (end_ - lo_) + 8;  // words the tests may read

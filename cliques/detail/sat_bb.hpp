@@ -135,7 +135,7 @@ class SatBranchAndBound {
   bool fix_literal(int q, int& emptied);  // q's last member is a relaxation literal: set it
   // Class j loses a member because unit q was set (the reason recorded); true when j is empty.
   bool lose_member(int j, int q);
-  void clear_marks();     // marks_ back to none, through marked_
+  void clear_marks();  // marks_ back to none, through marked_
 
   const BitGraph& g_;
   const int W_;
@@ -159,8 +159,12 @@ class SatBranchAndBound {
   std::vector<int> pending_;  // classes of the current colour group's inconsistent subsets
   int colours_ = 0, coloured_ = 0, lo_ = 0, end_ = 0;  // words [lo_, end_) hold candidates
 
-  std::vector<int> class_of_;  // per vertex of A: its class (written as colour() colours it)
-  std::vector<int> open_;      // per class: its members, -1 once frozen (a test's first counts)
+  // Per vertex of A: its class (written as colour() colours it, then by join(); a relaxed group's
+  // refuted vertices, not in A, take their group's class).
+  std::vector<int> class_of_;
+  // Per class: its members (a test's first counts); -1 once frozen, and a relaxed class's count
+  // includes its relaxation literals.
+  std::vector<int> open_;
   std::vector<int> count_;     // per class: members left in R (-1: frozen)
   std::vector<Word> saved_R_;  // failed_literal(): R and the counts before a probe
   std::vector<int> saved_count_;
@@ -171,7 +175,7 @@ class SatBranchAndBound {
   std::vector<int> reason_owner_;  // per edge: the class it removed them from
   std::vector<int> reason_next_;   // per edge: next edge of the same class
   std::vector<int> stack_;
-  std::vector<int> ones_;  // the classes a test leaves one member: the first ones_count_
+  std::vector<int> ones_;            // the classes a test leaves one member: the first ones_count_
   std::vector<int> hits_, touched_;  // last_class_without(): per class, u's non-neighbours in it
   int ones_count_ = 0;
   std::vector<char> marks_;
