@@ -138,12 +138,12 @@ int SatBranchAndBound::member(int k) const {
   return -1;
 }
 
-bool SatBranchAndBound::no_neighbour_in(int u, int k) const {
+int SatBranchAndBound::neighbour_word(int u, int k) const {
   const Word* Nu = g_.row(u);
   const Word* C = classes_.data() + static_cast<std::size_t>(k) * W_;
   int x = lo_;
   while (x < end_ && (C[x] & Nu[x]) == 0) ++x;
-  return x == end_;
+  return x;
 }
 
 int SatBranchAndBound::last_class_without(int u, int k1, int low) {
@@ -158,9 +158,7 @@ int SatBranchAndBound::last_class_without(int u, int k1, int low) {
   int budget = kTestPasses * (end_ - lo_) + 8;  // words the tests may read
   for (; top > k1; --top) {
     if (frozen_[static_cast<std::size_t>(top)]) continue;
-    const Word* C = classes_.data() + static_cast<std::size_t>(top) * W_;
-    int x = lo_;
-    while (x < end_ && (C[x] & Nu[x]) == 0) ++x;
+    const int x = neighbour_word(u, top);
     if (x == end_) return top;
     budget -= x - lo_ + 1;
     if (budget <= 0) break;
@@ -168,7 +166,8 @@ int SatBranchAndBound::last_class_without(int u, int k1, int low) {
   if (--top <= k1) return k1;
   if (count_and_not(A_.data(), Nu, lo_, end_) > kMaxStrangers) {
     // Many non-neighbours: the rest tested one by one.
-    while (top > k1 && (frozen_[static_cast<std::size_t>(top)] || !no_neighbour_in(u, top))) --top;
+    while (top > k1 && (frozen_[static_cast<std::size_t>(top)] || neighbour_word(u, top) < end_))
+      --top;
     return top;
   }
   if (hits_.size() < static_cast<std::size_t>(classes_count_))

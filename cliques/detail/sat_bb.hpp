@@ -118,7 +118,8 @@ class SatBranchAndBound {
   int member(int k) const;  // the first member of class k left in R
   // Re-NUMBER with the test's counts: v has one neighbour u in a class k1, u none in a class k2.
   bool renumber(int v, int low);
-  bool no_neighbour_in(int u, int k) const;  // no member of low class k is u's neighbour
+  // The first word in [lo_, end_) where low class k holds a neighbour of u; end_ when none does.
+  int neighbour_word(int u, int k) const;
   // The last unfrozen low class past k1 holding none of u's neighbours, or k1 when none does.
   int last_class_without(int u, int k1, int low);
   // Propagates the queued units from queue position `from`; returns the emptied class or -1.
