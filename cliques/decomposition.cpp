@@ -4,8 +4,10 @@
 
 #include <atomic>
 #include <mutex>
+#include <optional>
 
 #include "cliques/detail/cover.hpp"
+#include "cliques/detail/kernel.hpp"
 #include "cliques/detail/sat_bb.hpp"
 #include "core/detail/multiversion.hpp"
 #include "core/parallel.hpp"
@@ -184,9 +186,27 @@ class Decomposition {
       }
       if (recolours_within(sub, size - 1)) return {};
     }
+    // A MaxSAT search (no near-clique, nor in kCoverBandQuarters' band) runs on the complement's
+    // kernel (cliques/detail/kernel.hpp): on balm_realworld's b112_72 FPFH 0.3 k3, neighbourhoods
+    // of 800-850 members at density 0.91 needing 322 keep 670-710 needing 246-261, and searches
+    // of 1-20 s end in under 5 ms (BENCHMARK.md, section 67). The kernel's merged vertices slow
+    // the cover search, so the other paths keep the neighbourhood as it is.
+    const BitGraph* graph = &sub;
+    int target = size - 1;
+    std::optional<CliqueKernel> kernel;
+    if (hand_off && size >= BranchAndBound::kMinCover && !near && !sat_then_cover) {
+      kernel.emplace(sub);
+      graph = &kernel->graph();
+      target -= kernel->credit();
+      if (graph->size() <= target) return {};
+      if (target < 0) {  // the credit alone beats `size`: the kernel's clique, however small
+        if (graph->size() == 0) return lifted(v, members, kernel->lift({}));
+        target = 0;
+      }
+    }
     std::vector<int> found;
     if (search == Neighbourhood::kMaxSat) {
-      found = sat_search(sub, size - 1, budget, options,
+      found = sat_search(*graph, target, budget, options,
                          sat_then_cover ? sat_nodes_before_cover_ : 0, work);
     } else if (search == Neighbourhood::kCover) {
       // A near-clique's neighbourhoods are near-cliques: the LP bound above ruled most of them
@@ -200,13 +220,20 @@ class Decomposition {
       found = bb.best();
     }
     if (found.empty()) return {};
+    return lifted(v, members, kernel ? kernel->lift(found) : found);
+  }
+
+ private:
+  // The clique through v whose other vertices are `found` (ids of v's neighbourhood subgraph,
+  // vertex k being members[k]), in g's ids.
+  std::vector<int> lifted(int v, const std::vector<int>& members,
+                          const std::vector<int>& found) const {
     std::vector<int> clique{order_[static_cast<std::size_t>(v)]};
     for (int k : found)
       clique.push_back(order_[static_cast<std::size_t>(members[static_cast<std::size_t>(k)])]);
     return clique;
   }
 
- private:
   static std::vector<int> cover_search(const BitGraph& sub, int target, SearchBudget& budget) {
     BranchAndBound bb(sub, target, budget, true, true);
     bb.hand_off_near_cliques();

@@ -41,7 +41,7 @@ struct Interleaved {
 /// (BranchAndBound::near_clique() on its members and the clique it needs) takes kCover's search;
 /// each neighbourhood that needs 32 or more is first recoloured (recolours_within()), and one with
 /// fewer members than 9/4 of the clique it needs hands its MaxSAT search to kCover's after 5,000
-/// nodes.
+/// nodes; the others search the complement's kernel (CliqueKernel, cliques/detail/kernel.hpp).
 enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
 /// kMaxSatCover: the MaxSAT nodes after which a neighbourhood under 9/4 x the clique it needs, but
