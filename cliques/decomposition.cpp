@@ -205,7 +205,10 @@ class Decomposition {
       }
     }
     std::vector<int> found;
-    if (search == Neighbourhood::kMaxSat) {
+    if (search == Neighbourhood::kMaxSat && hand_off && size >= BranchAndBound::kMinCover) {
+      found = sat_search_in_own_order(*graph, target, budget, options,
+                                      sat_then_cover ? sat_nodes_before_cover_ : 0, work);
+    } else if (search == Neighbourhood::kMaxSat) {
       found = sat_search(*graph, target, budget, options,
                          sat_then_cover ? sat_nodes_before_cover_ : 0, work);
     } else if (search == Neighbourhood::kCover) {
@@ -259,6 +262,21 @@ class Decomposition {
     std::vector<int> better =
         cover_search(sub, std::max(target, static_cast<int>(found.size())), budget);
     return better.empty() ? found : better;
+  }
+
+  // sat_search on g relabelled in its own min-width order, as bbmcx-sat orders a whole graph: a
+  // neighbourhood keeps the order of the whole graph's decomposition, which is not its own. On
+  // balm_realworld's b112_72 FPFH 0.3 k3 its MaxSAT searches went from 3 million nodes without
+  // the proof in 30 s to 7,900 and the proof in 5.7 s (BENCHMARK.md, section 68).
+  static std::vector<int> sat_search_in_own_order(const BitGraph& g, int target,
+                                                  SearchBudget& budget, SatOptions options,
+                                                  long long cover_after, long long* work) {
+    const CoreDecomposition cd = core_decomposition(g, kNoDeadline);
+    const std::vector<int> order(cd.order.rbegin(), cd.order.rend());
+    std::vector<int> found =
+        sat_search(permuted(g, order), target, budget, options, cover_after, work);
+    for (int& k : found) k = order[static_cast<std::size_t>(k)];
+    return found;
   }
 
   bool lp_rules_out_of_members(int v, int target, Scratch& s) const {

@@ -42,6 +42,7 @@ struct Interleaved {
 /// each neighbourhood that needs 32 or more is first recoloured (recolours_within()), and one with
 /// fewer members than 9/4 of the clique it needs hands its MaxSAT search to kCover's after 5,000
 /// nodes; the others search the complement's kernel (CliqueKernel, cliques/detail/kernel.hpp).
+/// Each of these MaxSAT searches relabels its graph in that graph's own min-width order first.
 enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
 /// kMaxSatCover: the MaxSAT nodes after which a neighbourhood under 9/4 x the clique it needs, but
