@@ -11,28 +11,6 @@
 namespace verifybench {
 namespace {
 
-// A maximum clique by exhaustive include/exclude recursion (n <= ~40 at these densities).
-std::vector<int> brute_force_clique(const BitGraph& g) {
-  std::vector<int> best, chosen;
-  auto rec = [&](auto&& self, int v) -> void {
-    if (chosen.size() + static_cast<std::size_t>(g.size() - v) <= best.size()) return;
-    if (v == g.size()) {
-      best = chosen;
-      return;
-    }
-    bool fits = true;
-    for (int u : chosen) fits = fits && g.adjacent(u, v);
-    if (fits) {
-      chosen.push_back(v);
-      self(self, v + 1);
-      chosen.pop_back();
-    }
-    self(self, v + 1);
-  };
-  rec(rec, 0);
-  return best;
-}
-
 // The complement of a graph given by its (sparse) edge list.
 BitGraph complement_of(int n, const std::vector<std::pair<int, int>>& h_edges) {
   BitGraph h(n), g(n);
@@ -54,7 +32,7 @@ TEST(CliqueKernel, KeepsTheCliqueNumberAndLiftsToACliqueOfG) {
     const BitGraph g = test::random_graph(n, density, rng);
     const detail::CliqueKernel kernel(g);
     const int omega = test::brute_force_clique_number(g);
-    const std::vector<int> inner = brute_force_clique(kernel.graph());
+    const std::vector<int> inner = test::brute_force_clique(kernel.graph());
     ASSERT_EQ(static_cast<int>(inner.size()) + kernel.credit(), omega) << "rep " << rep;
     const std::vector<int> lifted = kernel.lift(inner);
     ASSERT_EQ(static_cast<int>(lifted.size()), omega) << "rep " << rep;
@@ -86,7 +64,7 @@ TEST(CliqueKernel, FoldsTheComplementOfAPathAndOfACycleAway) {
     const std::vector<int> cp = kp.lift({});
     EXPECT_EQ(static_cast<int>(cp.size()), (n + 1) / 2) << n;
     EXPECT_TRUE(gp.is_clique(cp)) << n;
-    const std::vector<int> inner = brute_force_clique(kc.graph());
+    const std::vector<int> inner = test::brute_force_clique(kc.graph());
     EXPECT_EQ(static_cast<int>(inner.size()) + kc.credit(), n / 2) << n;
     EXPECT_TRUE(gc.is_clique(kc.lift(inner))) << n;
     EXPECT_LE(kc.graph().size(), 3) << n;
@@ -101,7 +79,7 @@ TEST(CliqueKernel, DropsDominatedVerticesAndLeavesARegularComplementAlone) {
     g.add_edge(a, b);
   }
   const detail::CliqueKernel k(g);
-  const std::vector<int> inner = brute_force_clique(k.graph());
+  const std::vector<int> inner = test::brute_force_clique(k.graph());
   EXPECT_EQ(static_cast<int>(inner.size()) + k.credit(), test::brute_force_clique_number(g));
   for (int v : k.kept()) EXPECT_NE(v, 0);
   // The complement of a 3-regular graph with no triangle and no two vertices sharing their

@@ -37,16 +37,15 @@ inline std::vector<int> plant_clique(BitGraph& g, int k, std::mt19937_64& rng) {
   return planted;
 }
 
-/// Clique number by exhaustive include/exclude recursion (n <= ~30): obviously correct, slow.
-inline int brute_force_clique_number(const BitGraph& g) {
-  int best = 0;
-  std::vector<int> chosen;
+/// A maximum clique by exhaustive include/exclude recursion (n <= ~30): obviously correct, slow.
+inline std::vector<int> brute_force_clique(const BitGraph& g) {
+  std::vector<int> best, chosen;
   auto rec = [&](auto&& self, int v) -> void {
+    if (chosen.size() + static_cast<std::size_t>(g.size() - v) <= best.size()) return;
     if (v == g.size()) {
-      best = std::max(best, static_cast<int>(chosen.size()));
+      best = chosen;  // larger than best, or the line above had returned
       return;
     }
-    if (static_cast<int>(chosen.size()) + (g.size() - v) <= best) return;  // cannot beat best
     bool fits = true;
     for (int u : chosen) fits = fits && g.adjacent(u, v);
     if (fits) {
@@ -58,6 +57,11 @@ inline int brute_force_clique_number(const BitGraph& g) {
   };
   rec(rec, 0);
   return best;
+}
+
+/// Clique number by the same recursion.
+inline int brute_force_clique_number(const BitGraph& g) {
+  return static_cast<int>(brute_force_clique(g).size());
 }
 
 template <int Dim>
