@@ -155,13 +155,16 @@ class Decomposition {
     const bool hand_off = search == Neighbourhood::kMaxSatCover;
     const bool near =
         hand_off && BranchAndBound::near_clique(static_cast<int>(members.size()), size);
-    // Just past that ratio the MaxSAT search is mostly the faster, but a few of its searches run
-    // to 100,000s of nodes, which the cover search ends in about a second (b125_0 0.3 k3: three
-    // neighbourhoods of 1,680 members needing 831, 40 s of 58): past sat_nodes_before_cover_
-    // nodes (kSatNodesBeforeCover unless decompose() is told otherwise) it hands over.
+    // The hand-off's searches for cliques of kMinCover or more: recoloured first, and (past the
+    // near-cliques) searched in their own order.
+    const bool large = hand_off && size >= BranchAndBound::kMinCover;
+    // Just past the near-clique ratio the MaxSAT search is mostly the faster, but a few of its
+    // searches run to 100,000s of nodes, which the cover search ends in about a second (b125_0 0.3
+    // k3: three neighbourhoods of 1,680 members needing 831, 40 s of 58): past
+    // sat_nodes_before_cover_ nodes (kSatNodesBeforeCover unless decompose() is told otherwise) it
+    // hands over.
     const bool sat_then_cover =
-        hand_off && !near && size >= BranchAndBound::kMinCover &&
-        kCoverBandQuarters * size > 4LL * static_cast<long long>(members.size());
+        large && !near && kCoverBandQuarters * size > 4LL * static_cast<long long>(members.size());
     if (hand_off) search = near ? Neighbourhood::kCover : Neighbourhood::kMaxSat;
     // kCover: the LP bound on h_'s rows under a mask of the members, from the last neighbourhood's
     // matching, ends most neighbourhoods before their subgraph is built (k00_199_198 0.5 k10:
@@ -179,7 +182,7 @@ class Decomposition {
     // need 869, a first colouring leaves 432, 20 rounds of recolouring 103; with the kept
     // setting it proves the dump in 17 s, not 38 (section 64). Those ruled out this way spend no
     // node, so the deadline is read here.
-    if (hand_off && size >= BranchAndBound::kMinCover) {
+    if (large) {
       if (SteadyClock::now() >= budget.deadline) {
         budget.stopped = true;
         return {};
@@ -194,7 +197,7 @@ class Decomposition {
     const BitGraph* graph = &sub;
     int target = size - 1;
     std::optional<CliqueKernel> kernel;
-    if (hand_off && size >= BranchAndBound::kMinCover && !near && !sat_then_cover) {
+    if (large && !near && !sat_then_cover) {
       kernel.emplace(sub);
       graph = &kernel->graph();
       target -= kernel->credit();
@@ -205,7 +208,7 @@ class Decomposition {
       }
     }
     std::vector<int> found;
-    if (search == Neighbourhood::kMaxSat && hand_off && size >= BranchAndBound::kMinCover) {
+    if (search == Neighbourhood::kMaxSat && large) {
       found = sat_search_in_own_order(*graph, target, budget, options,
                                       sat_then_cover ? sat_nodes_before_cover_ : 0, work);
     } else if (search == Neighbourhood::kMaxSat) {
