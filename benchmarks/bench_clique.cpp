@@ -5,8 +5,12 @@
 // The graph is built once per benchmark; only the search is timed.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <numeric>
+#include <random>
 
+#include "cliques/detail/bbmc.hpp"
 #include "cliques/max_clique.hpp"
 #include "datasets/text_dump.hpp"
 #include "generators/synthetic.hpp"
@@ -95,3 +99,29 @@ BENCHMARK_CAPTURE(BM_HubNearClique, bbmcx, std::string("bbmcx"))
     ->Arg(500)
     ->ArgName("k")
     ->Unit(benchmark::kMillisecond);
+
+// Relabelling a graph (detail::permuted, what the decomposition's recolouring does each round on
+// its near-clique neighbourhoods): a whole shuffled order of G(n, p); args: n, density in
+// thousandths. Scattered bits on sparse rows, 64 x 64 blocks transposed on dense ones, the
+// non-edges cleared on near-complete ones.
+static void BM_Permuted(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const double p = state.range(1) / 1000.0;
+  std::mt19937_64 rng(59);
+  std::bernoulli_distribution edge(p);
+  vb::BitGraph g(n);
+  for (int u = 0; u < n; ++u)
+    for (int v = u + 1; v < n; ++v)
+      if (edge(rng)) g.add_edge(u, v);
+  std::vector<int> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), rng);
+  for (auto _ : state) {
+    const vb::BitGraph h = vb::detail::permuted(g, order);
+    benchmark::DoNotOptimize(h.row(0));
+  }
+}
+BENCHMARK(BM_Permuted)
+    ->ArgsProduct({{500, 2000}, {100, 500, 900, 980}})
+    ->ArgNames({"n", "density_permil"})
+    ->Unit(benchmark::kMicrosecond);
