@@ -142,9 +142,10 @@ BitGraph BranchAndBound::induced(const BitGraph& g, const std::vector<int>& vert
   return sub;
 }
 
-// Relabelling scatters one bit per edge or transposes 64 x 64 blocks. Transposing pays on dense
-// rows (hamming8-4, 41 edges a word of row) and loses on sparse ones (the 3DMatch dump, 4.3
-// edges a word), so the threshold sits between (measured in BENCHMARK.md, section 5e).
+// Relabelling scatters one bit per edge, clears one per non-edge, or transposes 64 x 64 blocks.
+// Transposing pays on dense rows (hamming8-4, 41 edges a word of row) and loses on sparse ones
+// (the 3DMatch dump, 4.3 edges a word), so the threshold sits between (measured in BENCHMARK.md,
+// section 5e); the same threshold on the non-edges decides for near-complete rows (section 69).
 constexpr long long kTransposeBitsPerWord = 8;
 
 BitGraph permuted(const BitGraph& g, const std::vector<int>& vertices,
