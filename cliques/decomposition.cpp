@@ -57,7 +57,7 @@ BitGraph core_subgraph(const BitGraph& g, std::vector<int>& members, int target,
 namespace {
 
 // kMaxSatCover's neighbourhoods that are no near-cliques but have fewer members than 9/4 of the
-// clique they need hand their MaxSAT search to the cover search (after kSatNodesBeforeCover).
+// clique they need hand their MaxSAT search to the cover search (after kSatNodesBeforeHandOver).
 constexpr long long kCoverBandQuarters = 9;
 
 // Whether |row & mask| over the listed words reaches k, with the hardware popcount where the CPU
@@ -115,7 +115,8 @@ class Decomposition {
     }
   }
   int size() const { return h_.size(); }
-  void set_sat_nodes_before_cover(long long nodes) { sat_nodes_before_cover_ = nodes; }
+  void set_sat_nodes_before_hand_over(long long nodes) { sat_nodes_before_hand_over_ = nodes; }
+  void set_nesting(int levels) { nesting_ = levels; }
 
   /// Per-worker scratch of solve(): a zeroed bitset of h_'s width and two buffers.
   struct Scratch {
@@ -161,8 +162,8 @@ class Decomposition {
     // Just past the near-clique ratio the MaxSAT search is mostly the faster, but a few of its
     // searches run to 100,000s of nodes, which the cover search ends in about a second (b125_0 0.3
     // k3: three neighbourhoods of 1,680 members needing 831, 40 s of 58): past
-    // sat_nodes_before_cover_ nodes (kSatNodesBeforeCover unless decompose() is told otherwise) it
-    // hands over.
+    // sat_nodes_before_hand_over_ nodes (kSatNodesBeforeHandOver unless decompose() is told
+    // otherwise) it hands over.
     const bool sat_then_cover =
         large && !near && kCoverBandQuarters * size > 4LL * static_cast<long long>(members.size());
     if (hand_off) search = near ? Neighbourhood::kCover : Neighbourhood::kMaxSat;
@@ -189,11 +190,12 @@ class Decomposition {
       }
       if (recolours_within(sub, size - 1)) return {};
     }
-    // A MaxSAT search (no near-clique, nor in kCoverBandQuarters' band) runs on the complement's
-    // kernel (cliques/detail/kernel.hpp): on balm_realworld's b112_72 FPFH 0.3 k3, neighbourhoods
-    // of 800-850 members at density 0.91 needing 322 keep 670-710 needing 246-261, and searches
-    // of 1-20 s end in under 5 ms (BENCHMARK.md, section 67). The kernel's merged vertices slow
-    // the cover search, so the other paths keep the neighbourhood as it is.
+    // A neighbourhood that is no near-clique, nor in kCoverBandQuarters' band, is reduced to the
+    // complement's kernel (cliques/detail/kernel.hpp): on balm_realworld's b112_72 FPFH 0.3 k3,
+    // neighbourhoods of 800-850 members at density 0.91 needing 322 keep 670-710 needing 246-261,
+    // and searches of 1-20 s end in under 5 ms (BENCHMARK.md, section 67). The kernel is then
+    // decomposed again (decomposed_again()). The kernel's merged vertices slow the cover search,
+    // so the other paths keep the neighbourhood as it is.
     const BitGraph* graph = &sub;
     int target = size - 1;
     std::optional<CliqueKernel> kernel;
@@ -208,12 +210,14 @@ class Decomposition {
       }
     }
     std::vector<int> found;
-    if (search == Neighbourhood::kMaxSat && large) {
+    if (search == Neighbourhood::kMaxSat && large && !sat_then_cover && nesting_ > 0) {
+      found = sat_then_decomposed(*graph, target, budget, options, work);
+    } else if (search == Neighbourhood::kMaxSat && large) {  // in the band, or nested too deep
       found = sat_search_in_own_order(*graph, target, budget, options,
-                                      sat_then_cover ? sat_nodes_before_cover_ : 0, work);
+                                      sat_then_cover ? sat_nodes_before_hand_over_ : 0, work);
     } else if (search == Neighbourhood::kMaxSat) {
       found = sat_search(*graph, target, budget, options,
-                         sat_then_cover ? sat_nodes_before_cover_ : 0, work);
+                         sat_then_cover ? sat_nodes_before_hand_over_ : 0, work);
     } else if (search == Neighbourhood::kCover) {
       // A near-clique's neighbourhoods are near-cliques: the LP bound above ruled most of them
       // out; on the k-core, when the peel took vertices, it may rule out more; BBMCX, handing its
@@ -282,6 +286,43 @@ class Decomposition {
     return found;
   }
 
+  // A kernel's MaxSAT search, in its own order, and past sat_nodes_before_hand_over_ nodes (not
+  // by the caller's limits) the kernel searched as the hand-off searches the whole graph:
+  // decomposed in its own degeneracy order, each of its neighbourhoods peeled, recoloured,
+  // kernelised and so on down (LMC's first-level scheme). Some kernels are dense (0.85-0.95) with
+  // cliques of 35-45% of their vertices: a first colouring leaves 50 of 871 vertices to branch
+  // on, and the MaxSAT search branches near its root for millions of nodes (balm_realworld's
+  // b112_72 FPFH 0.5 k10: a kernel of 871 vertices needing 336, unproved after 2.6 million
+  // nodes; decomposed, 1,148 nodes and 0.27 s). Decomposing every kernel at once costs where the
+  // MaxSAT search ends soon (b148_51 0.5 k10 unproved at 30 s, b112_72 0.3 k10 1.8x the time);
+  // after 5,000 nodes no dump of the corpus or of balm_realworld changes status, and no search
+  // gets slower (BENCHMARK.md, section 70).
+  std::vector<int> sat_then_decomposed(const BitGraph& kernel, int target, SearchBudget& budget,
+                                       SatOptions options, long long* work) const {
+    const long long after = sat_nodes_before_hand_over_;
+    const long long user_limit = budget.node_limit;
+    const bool capped = after > 0 && (user_limit == 0 || budget.nodes + after < user_limit);
+    if (capped) budget.node_limit = budget.nodes + after;
+    std::vector<int> found = sat_search_in_own_order(kernel, target, budget, options, 0, work);
+    budget.node_limit = user_limit;
+    if (!capped || !budget.stopped || SteadyClock::now() >= budget.deadline) return found;
+    budget.stopped = false;
+    std::vector<int> better =
+        decomposed_again(kernel, std::max(target, static_cast<int>(found.size())), budget, options);
+    return better.empty() ? found : better;
+  }
+
+  std::vector<int> decomposed_again(const BitGraph& kernel, int target, SearchBudget& budget,
+                                    SatOptions options) const {
+    try {
+      return decompose(kernel, target, budget, {}, options, Neighbourhood::kMaxSatCover,
+                       sat_nodes_before_hand_over_, nesting_ - 1);
+    } catch (const DeadlinePassed&) {  // in its set-up, before it found anything
+      budget.stopped = true;
+      return {};
+    }
+  }
+
   bool lp_rules_out_of_members(int v, int target, Scratch& s) const {
     for (int u : s.members) s.mask[static_cast<std::size_t>(u / kBits)] |= Word{1} << (u % kBits);
     const bool out = lp_rules_out(h_, s.members, s.mask.data(), v / kBits + 1, target, s.matching);
@@ -334,16 +375,18 @@ class Decomposition {
   std::vector<int> order_;
   BitGraph h_;
   std::vector<int> prefix_colours_;  // colours of vertices 0..v (colour_prefixes()), or empty
-  long long sat_nodes_before_cover_ = kSatNodesBeforeCover;
+  long long sat_nodes_before_hand_over_ = kSatNodesBeforeHandOver;
+  int nesting_ = kMaxNesting;
 };
 
 }  // namespace
 
 std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
                            const Interleaved& helper, SatOptions options, Neighbourhood search,
-                           long long sat_nodes_before_cover) {
+                           long long sat_nodes_before_hand_over, int nesting) {
   Decomposition dec(g, budget.deadline);
-  dec.set_sat_nodes_before_cover(sat_nodes_before_cover);
+  dec.set_sat_nodes_before_hand_over(sat_nodes_before_hand_over);
+  dec.set_nesting(nesting);
   // On near-cliques the colouring rules out the first vertices at once (k00_199_198 0.3 k3
   // through the decomposition alone: 24.5 -> 18.1 s; BENCHMARK.md, section 51).
   if (search == Neighbourhood::kCover) dec.colour_prefixes();

@@ -501,7 +501,9 @@ TEST(Decomposition, TheMaxSatSearchHandedToTheCoverSearchMidTreeMatchesTheConstr
   // where a neighbourhood is no near-clique but under 9/4 x the clique it needs: the same omega
   // as the construction's from no incumbent, omega - 1 and omega; a caller's node limit still
   // stops the search and is left as it was. The hand-over shows as node counts that differ from
-  // the searches never handed over (sat_nodes_before_cover 0).
+  // the searches never handed over (sat_nodes_before_hand_over 0). No kernel is decomposed again
+  // (nesting 0): after one node every kernel would be, which takes these graphs 100 times the
+  // nodes (section 70).
   int differ = 0, cases = 0;
   // Near-cliques of 240-320 vertices with omega 71-110 (of 64 or more, neighbourhoods between
   // 2 x + 16 and 9/4 x the clique they need can exist); 320 at 0.45 (omega 83) takes the MaxSAT
@@ -518,12 +520,12 @@ TEST(Decomposition, TheMaxSatSearchHandedToTheCoverSearchMidTreeMatchesTheConstr
       detail::SearchBudget budget = detail::make_budget({});
       for (int from : {0, nc.omega - 1}) {
         const std::vector<int> found = detail::decompose(
-            nc.g, from, budget, {}, {}, detail::Neighbourhood::kMaxSatCover, after);
+            nc.g, from, budget, {}, {}, detail::Neighbourhood::kMaxSatCover, after, 0);
         ASSERT_EQ(static_cast<int>(found.size()), nc.omega) << k << " " << density << " " << from;
         ASSERT_TRUE(nc.g.is_clique(found)) << k;
       }
       ASSERT_TRUE(detail::decompose(nc.g, nc.omega, budget, {}, {},
-                                    detail::Neighbourhood::kMaxSatCover, after)
+                                    detail::Neighbourhood::kMaxSatCover, after, 0)
                       .empty())
           << k;
       EXPECT_FALSE(budget.stopped);
@@ -534,12 +536,53 @@ TEST(Decomposition, TheMaxSatSearchHandedToTheCoverSearchMidTreeMatchesTheConstr
     ++cases;
     detail::SearchBudget limited = detail::make_budget({});
     limited.node_limit = 3;
-    detail::decompose(nc.g, 0, limited, {}, {}, detail::Neighbourhood::kMaxSatCover, 1);
+    detail::decompose(nc.g, 0, limited, {}, {}, detail::Neighbourhood::kMaxSatCover, 1, 0);
     EXPECT_EQ(limited.node_limit, 3) << k;
     EXPECT_TRUE(limited.stopped) << k;
   }
   ASSERT_EQ(cases, 3);
   EXPECT_GE(differ, 2) << "no MaxSAT search was handed to the cover search";  // measured: 3
+}
+
+TEST(Decomposition, KernelsDecomposedAgainMatchTheConstruction) {
+  // kMaxSatCover's neighbourhoods that are neither near-cliques nor in the 9/4 band reduce to the
+  // complement's kernel, whose MaxSAT search is handed after kSatNodesBeforeHandOver nodes to the
+  // kernel's own decomposition (kMaxNesting levels; nesting 0: never). Near-cliques whose blocks
+  // of 24 lose 40-50% of their pairs (omega 25-29% of K, so that the neighbourhoods through K hold
+  // 3-4 x the clique they need) among 300 sparse outliers: the same omega as the construction from
+  // no incumbent, omega - 1 and omega, both ways; the hand-over shows as node counts that differ
+  // (measured: 509,100 -> 264,482, 53,855 -> 45,977 and 451,429 -> 132,412).
+  const struct {
+    int k;
+    double density;
+  } graphs[] = {{200, 0.4}, {240, 0.4}, {240, 0.5}};
+  int differ = 0;
+  for (const auto& [k, density] : graphs) {
+    const PlantedGraph nc = block_near_clique(k, 300, 24, density, 70101 + k);
+    ASSERT_GE(nc.omega, detail::BranchAndBound::kMinCover + 8) << k << " " << density;
+    ASSERT_LT(9 * nc.omega, 4 * k) << k << " " << density;  // past the band
+    long long nodes[2] = {0, 0};
+    for (int nesting : {0, detail::kMaxNesting}) {
+      detail::SearchBudget budget = detail::make_budget({});
+      for (int from : {0, nc.omega - 1}) {
+        const std::vector<int> found =
+            detail::decompose(nc.g, from, budget, {}, {}, detail::Neighbourhood::kMaxSatCover,
+                              detail::kSatNodesBeforeHandOver, nesting);
+        ASSERT_EQ(static_cast<int>(found.size()), nc.omega)
+            << k << " " << density << " " << from << " " << nesting;
+        ASSERT_TRUE(nc.g.is_clique(found)) << k;
+      }
+      ASSERT_TRUE(detail::decompose(nc.g, nc.omega, budget, {}, {},
+                                    detail::Neighbourhood::kMaxSatCover,
+                                    detail::kSatNodesBeforeHandOver, nesting)
+                      .empty())
+          << k << " " << density << " " << nesting;
+      EXPECT_FALSE(budget.stopped);
+      nodes[nesting > 0] = budget.nodes;
+    }
+    differ += nodes[0] != nodes[1];
+  }
+  EXPECT_GE(differ, 2) << "no kernel was decomposed again";
 }
 
 TEST(Decomposition, AutoProvesNearCliquesWhoseCliqueIsUnderHalfThePrunedGraph) {

@@ -41,24 +41,33 @@ struct Interleaved {
 /// (BranchAndBound::near_clique() on its members and the clique it needs) takes kCover's search;
 /// each neighbourhood that needs 32 or more is first recoloured (recolours_within()), and one with
 /// fewer members than 9/4 of the clique it needs hands its MaxSAT search to kCover's after 5,000
-/// nodes; the others search the complement's kernel (CliqueKernel, cliques/detail/kernel.hpp).
-/// Each of these MaxSAT searches relabels its graph in that graph's own min-width order first.
+/// nodes (that MaxSAT search relabels its graph in the graph's own min-width order first); the
+/// others reduce to the complement's kernel (CliqueKernel, cliques/detail/kernel.hpp), whose
+/// MaxSAT search (in its own order) hands over after 5,000 nodes to the kernel's own
+/// decomposition, with kMaxSatCover in its neighbourhoods, at most kMaxNesting levels down.
 enum class Neighbourhood { kBbmc, kMaxSat, kCover, kMaxSatCover };
 
-/// kMaxSatCover: the MaxSAT nodes after which a neighbourhood under 9/4 x the clique it needs, but
-/// no near-clique, goes to kCover's search (b125_0 FPFH 0.3 k3: three of 326,000-764,000 nodes,
-/// 40 s of 58; BENCHMARK.md, section 64).
-constexpr long long kSatNodesBeforeCover = 5000;
+/// kMaxSatCover: how many times a kernel may be decomposed again below the first decomposition;
+/// past that its MaxSAT search runs to the end. The kernels shrink at each level (b112_72 FPFH
+/// 0.5 k10: 1,080, then 850, then 500 members; BENCHMARK.md, section 70): this bounds the stack.
+constexpr int kMaxNesting = 8;
+
+/// kMaxSatCover: the MaxSAT nodes after which a search hands over. A neighbourhood under 9/4 x the
+/// clique it needs, but no near-clique, goes to kCover's search (b125_0 FPFH 0.3 k3: three of
+/// 326,000-764,000 nodes, 40 s of 58; BENCHMARK.md, section 64); a kernel past that band, to its
+/// own decomposition (section 70).
+constexpr long long kSatNodesBeforeHandOver = 5000;
 
 /// The largest clique above `incumbent` (ids of g) by the decomposition with `search` in each
 /// neighbourhood (kMaxSat, and kMaxSatCover's neighbourhoods that are no near-cliques:
-/// SatBranchAndBound with `options`, handed to kCover's search after `sat_nodes_before_cover`
-/// nodes where kSatNodesBeforeCover says; 0: never), or empty; budget.stopped when the budget
-/// ran out first.
+/// SatBranchAndBound with `options`, handed over after `sat_nodes_before_hand_over` nodes where
+/// kMaxSatCover says, 0: never; a kernel decomposed again at most `nesting` levels down, 0: never),
+/// or empty; budget.stopped when the budget ran out first.
 std::vector<int> decompose(const BitGraph& g, int incumbent, SearchBudget& budget,
                            const Interleaved& helper = {}, SatOptions options = {},
                            Neighbourhood search = Neighbourhood::kMaxSat,
-                           long long sat_nodes_before_cover = kSatNodesBeforeCover);
+                           long long sat_nodes_before_hand_over = kSatNodesBeforeHandOver,
+                           int nesting = kMaxNesting);
 
 /// bbmc-dec: BBMC on each vertex's later neighbours in degeneracy order (PMC's scheme).
 CliqueSearchResult run_bbmc_dec(const BitGraph& g, const CliqueSearchParams& p);
