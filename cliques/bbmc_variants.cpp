@@ -298,6 +298,13 @@ constexpr std::uint64_t kInterleavedStream = 1;
 // the dense path's decomposition neighbourhoods (density 0.6-0.75) do not repay (BENCHMARK.md,
 // section 56).
 constexpr detail::SatOptions kDenseSat{false, false, true};
+// Where the clique is at least a third of the pruned graph (the complement's kernels that
+// correspondence graphs' neighbourhoods reduce to: 36-48%), the MaxSAT tree hands over to the
+// degeneracy decomposition after kSatNodesBeforeHandOver nodes, as the hand-off's kernels do: an
+// 871-vertex kernel at density 0.936 (omega 336) unproved at 20 s -> 0.63 s, three others
+// 1.6-5x faster. G(n, p) at 0.9-0.97, whose cliques are 20-25% of the vertices, keep the one tree
+// (G(200, 0.9) took 1.15x with the hand-over; BENCHMARK.md, section 70).
+constexpr int kLargeCliqueShare = 3;
 constexpr detail::SatOptions kNeighbourhoodSat{false, false, false};
 // In the hand-off of long sparse searches the neighbourhoods keep Re-NUMBER and failed literals,
 // and below kDispersedDensity (the correspondence graphs of scans, whose neighbourhoods hold
@@ -467,9 +474,27 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         interleaved.seed = derive_seed(params.seed, {kLocalSearchStream, kInterleavedStream});
         LocalSearch helper(sub, interleaved);
         bb.interleave(&helper, kLocalInitialVisitsPerVertex * sub.size(), kDenseLocalShare);
+        const long long user_limit = budget.node_limit;
+        const bool capped =
+            params.decompose_after_words > 0 && kLargeCliqueShare * incumbent >= sub.size() &&
+            (user_limit == 0 || budget.nodes + detail::kSatNodesBeforeHandOver < user_limit);
+        if (capped) budget.node_limit = budget.nodes + detail::kSatNodesBeforeHandOver;
         bb.run();
+        budget.node_limit = user_limit;
         found = bb.best();
         ls_steps += helper.steps();
+        // Stopped by its own cap (not the caller's limits, nor the deadline): the decomposition.
+        if (capped && budget.stopped && SteadyClock::now() < budget.deadline) {
+          budget.stopped = false;
+          const int size = std::max(incumbent, static_cast<int>(found.size()));
+          try {  // a deadline in its set-up keeps the tree's clique
+            std::vector<int> better =
+                decompose(sub, size, budget, {}, {}, detail::Neighbourhood::kMaxSatCover);
+            if (!better.empty()) found = std::move(better);
+          } catch (const DeadlinePassed&) {
+            budget.stopped = true;
+          }
+        }
       } else if (!near_clique && decomposes(g, dens)) {
         LocalSearchParams interleaved = ls;
         interleaved.max_steps = LocalSearchParams{}.max_steps;
@@ -628,14 +653,17 @@ void register_clique_algorithms() {
     CliqueAlgorithms::add({"auto",
                            "greedy starts and k-core pruning, then cover when the pruned graph is "
                            "a near-clique (complement density <= 0.25), else BBMCX on it "
-                           "(bbmcx-sat with a local search interleaved from density 0.85; "
+                           "(bbmcx-sat with a local search interleaved from density 0.85, "
+                           "handed to the neighbourhoods below after 5,000 nodes where the "
+                           "clique is a third of the graph; "
                            "from 0.5, or 0.45 where the degrees "
                            "spread twice a random graph's, bbmc-dec's neighbourhoods "
                            "with the MaxSAT bound and bbmcx-ls's local search between them, on "
                            "regular graphs BBMCX with that local search interleaved; the "
                            "neighbourhoods too after a long sparse search, soon where the "
                            "degrees spread twice a random graph's, each recoloured first "
-                           "(iterated greedy), the near-clique ones by cover's LP bound)",
+                           "(iterated greedy), the near-clique ones by cover's LP bound, the "
+                           "others' long MaxSAT searches by their own neighbourhoods)",
                            true, run_pruned<true>});
     CliqueAlgorithms::add({"doll",
                            "Russian doll search (Ostergard 2002, cliquer's algorithm) on bitsets",

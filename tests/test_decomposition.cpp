@@ -585,6 +585,36 @@ TEST(Decomposition, KernelsDecomposedAgainMatchTheConstruction) {
   EXPECT_GE(differ, 2) << "no kernel was decomposed again";
 }
 
+TEST(Decomposition, AutoHandsLongDenseSearchesWithLargeCliquesToTheDecomposition) {
+  // auto's dense path (density 0.85 and up) where the clique is at least a third of the pruned
+  // graph: after kSatNodesBeforeHandOver nodes the MaxSAT tree hands over to the decomposition
+  // (decompose_after_words 0: never). Near-cliques K of 250-300 vertices alone, whose blocks of 24
+  // lose 25-30% of their pairs (density 0.97-0.98, omega 34-38% of K): omega from the
+  // construction both ways, proved, and the hand-over shows as node counts that differ
+  // (measured: 26,709 -> 6,780, 27,177 -> 5,750 and 794,237 -> 10,950).
+  register_clique_algorithms();
+  CliqueSearchParams with, without;
+  with.time_limit_s = without.time_limit_s = 120;  // a safety net, not a timing assertion
+  without.decompose_after_words = 0;
+  const struct {
+    int k;
+    double density;
+  } graphs[] = {{250, 0.3}, {300, 0.25}, {300, 0.3}};
+  int handed = 0;
+  for (const auto& [k, density] : graphs) {
+    const PlantedGraph nc = block_near_clique(k, 0, 24, density, 80001 + k);
+    ASSERT_GE(3 * nc.omega, k) << k << " " << density;
+    const auto a = CliqueAlgorithms::get("auto").run(nc.g, with);
+    const auto b = CliqueAlgorithms::get("auto").run(nc.g, without);
+    EXPECT_TRUE(nc.g.is_clique(a.clique) && nc.g.is_clique(b.clique)) << k;
+    EXPECT_EQ(static_cast<int>(a.clique.size()), nc.omega) << k << " " << density;
+    EXPECT_EQ(static_cast<int>(b.clique.size()), nc.omega) << k << " " << density;
+    EXPECT_TRUE(a.optimal && b.optimal) << k;
+    handed += a.nodes != b.nodes;
+  }
+  EXPECT_GE(handed, 2) << "no dense search was handed to the decomposition";
+}
+
 TEST(Decomposition, AutoProvesNearCliquesWhoseCliqueIsUnderHalfThePrunedGraph) {
   // A near-clique K whose blocks of 24 lose 15-50% of their pairs (omega 22-49% of K) among 2,000
   // sparse outliers (the whole graph's density about 0.02, as in a k-NN dump): the pruned graph
