@@ -301,7 +301,7 @@ constexpr detail::SatOptions kDenseSat{false, false, true};
 // Where the clique is at least a third of the pruned graph (the complement's kernels that
 // correspondence graphs' neighbourhoods reduce to: 36-48%), the MaxSAT tree hands over to the
 // degeneracy decomposition after kSatNodesBeforeHandOver nodes, as the hand-off's kernels do: an
-// 871-vertex kernel at density 0.936 (omega 336) unproved at 20 s -> 0.63 s, three others
+// 871-vertex kernel at density 0.936 (omega 336) unproved at 20 s -> 0.77 s, three others
 // 1.6-5x faster. G(n, p) at 0.9-0.97, whose cliques are 20-25% of the vertices, keep the one tree
 // (G(200, 0.9) took 1.15x with the hand-over; BENCHMARK.md, section 70).
 constexpr int kLargeCliqueShare = 3;
@@ -474,18 +474,14 @@ CliqueSearchResult run_pruned(const BitGraph& g, const CliqueSearchParams& param
         interleaved.seed = derive_seed(params.seed, {kLocalSearchStream, kInterleavedStream});
         LocalSearch helper(sub, interleaved);
         bb.interleave(&helper, kLocalInitialVisitsPerVertex * sub.size(), kDenseLocalShare);
-        const long long user_limit = budget.node_limit;
-        const bool capped =
-            params.decompose_after_words > 0 && kLargeCliqueShare * incumbent >= sub.size() &&
-            (user_limit == 0 || budget.nodes + detail::kSatNodesBeforeHandOver < user_limit);
-        if (capped) budget.node_limit = budget.nodes + detail::kSatNodesBeforeHandOver;
-        bb.run();
-        budget.node_limit = user_limit;
+        const bool large_clique =
+            params.decompose_after_words > 0 && kLargeCliqueShare * incumbent >= sub.size();
+        const bool hand_over = detail::run_capped(
+            budget, large_clique ? detail::kSatNodesBeforeHandOver : 0, [&] { bb.run(); });
         found = bb.best();
         ls_steps += helper.steps();
         // Stopped by its own cap (not the caller's limits, nor the deadline): the decomposition.
-        if (capped && budget.stopped && SteadyClock::now() < budget.deadline) {
-          budget.stopped = false;
+        if (hand_over) {
           const int size = std::max(incumbent, static_cast<int>(found.size()));
           try {  // a deadline in its set-up keeps the tree's clique
             std::vector<int> better =

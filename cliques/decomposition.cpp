@@ -255,17 +255,11 @@ class Decomposition {
   // limits) it hands the neighbourhood to the cover search, from what it found.
   static std::vector<int> sat_search(const BitGraph& sub, int target, SearchBudget& budget,
                                      SatOptions options, long long cover_after, long long* work) {
-    const long long user_limit = budget.node_limit;
-    const bool capped =
-        cover_after > 0 && (user_limit == 0 || budget.nodes + cover_after < user_limit);
-    if (capped) budget.node_limit = budget.nodes + cover_after;
     SatBranchAndBound bb(sub, target, budget, options);
-    bb.run();
+    const bool hand_over = run_capped(budget, cover_after, [&] { bb.run(); });
     if (work) *work += bb.work();
-    budget.node_limit = user_limit;
     std::vector<int> found = bb.best();
-    if (!capped || !budget.stopped || SteadyClock::now() >= budget.deadline) return found;
-    budget.stopped = false;
+    if (!hand_over) return found;
     std::vector<int> better =
         cover_search(sub, std::max(target, static_cast<int>(found.size())), budget);
     return better.empty() ? found : better;
@@ -299,14 +293,12 @@ class Decomposition {
   // gets slower (BENCHMARK.md, section 70).
   std::vector<int> sat_then_decomposed(const BitGraph& kernel, int target, SearchBudget& budget,
                                        SatOptions options, long long* work) const {
-    const long long after = sat_nodes_before_hand_over_;
-    const long long user_limit = budget.node_limit;
-    const bool capped = after > 0 && (user_limit == 0 || budget.nodes + after < user_limit);
-    if (capped) budget.node_limit = budget.nodes + after;
-    std::vector<int> found = sat_search_in_own_order(kernel, target, budget, options, 0, work);
-    budget.node_limit = user_limit;
-    if (!capped || !budget.stopped || SteadyClock::now() >= budget.deadline) return found;
-    budget.stopped = false;
+    std::vector<int> found;
+    if (!run_capped(budget, sat_nodes_before_hand_over_, [&] {
+          found = sat_search_in_own_order(kernel, target, budget, options, 0, work);
+        })) {
+      return found;
+    }
     std::vector<int> better =
         decomposed_again(kernel, std::max(target, static_cast<int>(found.size())), budget, options);
     return better.empty() ? found : better;

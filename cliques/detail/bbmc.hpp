@@ -82,6 +82,22 @@ struct SearchBudget {
   }
 };
 
+/// Runs `search` with the budget's node limit lowered to `cap` more nodes, where that is below the
+/// caller's own limit (cap 0: no cap), then puts the caller's limit back. True when the search
+/// stopped on that cap before the deadline: the budget is then running again (stopped cleared)
+/// and the caller hands the search over to another.
+template <class Search>
+bool run_capped(SearchBudget& budget, long long cap, Search&& search) {
+  const long long user_limit = budget.node_limit;
+  const bool capped = cap > 0 && (user_limit == 0 || budget.nodes + cap < user_limit);
+  if (capped) budget.node_limit = budget.nodes + cap;
+  search();
+  budget.node_limit = user_limit;
+  if (!capped || !budget.stopped || SteadyClock::now() >= budget.deadline) return false;
+  budget.stopped = false;
+  return true;
+}
+
 /// A matching of the complement's double cover in a graph's ids (mate_l[u] = v: u_L -- v_R), kept
 /// from one lp_rules_out call (cover.hpp) to the next on overlapping vertex sets: its pairs inside
 /// the next set start that call's matching (sibling search nodes and the decomposition's
